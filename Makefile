@@ -1,0 +1,54 @@
+# simtree's front door. `make demo` and `make test` each install what they need (Debian 12),
+# build, then run. Everything else is a step of those two.
+
+BUILD      ?= build
+ASAN_BUILD ?= build-asan
+BENCH_BUILD ?= build-bench
+JOBS       ?= $(shell nproc)
+SHARED     ?= $(abspath ../shared)
+SIMTREE    := $(BUILD)/bin/simtree
+# Warnings are errors in CI (CI=true), warnings elsewhere.
+WERROR     := $(if $(filter true,$(CI)),ON,OFF)
+CMAKE_ARGS := -DSIMTREE_SHARED_DIR=$(SHARED) -DSIMTREE_WERROR=$(WERROR)
+
+.PHONY: all deps build demo test test-fast asan bench format clean
+
+all: build
+
+deps:
+	@scripts/install-deps.sh
+
+build: deps
+	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(CMAKE_ARGS)
+	cmake --build $(BUILD) -j $(JOBS)
+
+# The main job on the built-in default: the authors' tree01 with its parameters, to JSON + mesh.
+demo: build
+	@scripts/demo.sh $(SIMTREE) $(SHARED)/data out/demo
+
+# Every test (fast and end-to-end) in the Release build.
+test: build
+	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+test-fast: build
+	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) -L fast
+
+# The fast suite under AddressSanitizer + UndefinedBehaviorSanitizer.
+asan: deps
+	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSIMTREE_SANITIZE=ON $(CMAKE_ARGS)
+	cmake --build $(ASAN_BUILD) -j $(JOBS)
+	ASAN_OPTIONS=detect_leaks=1:detect_container_overflow=0:abort_on_error=1 \
+	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS) -L fast
+
+# Benchmarks (Google Benchmark and side-by-side peers); see docs/benchmarks.md.
+bench: deps
+	cmake -S . -B $(BENCH_BUILD) -DCMAKE_BUILD_TYPE=Release -DSIMTREE_BUILD_BENCH=ON $(CMAKE_ARGS)
+	cmake --build $(BENCH_BUILD) -j $(JOBS)
+	bench/run.sh $(BENCH_BUILD)
+
+format:
+	git ls-files '*.cc' '*.h' | xargs clang-format -i
+
+clean:
+	rm -rf $(BUILD) $(ASAN_BUILD) $(BENCH_BUILD) out

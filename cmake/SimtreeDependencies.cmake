@@ -1,0 +1,30 @@
+# Every third-party dependency, found once. Modules link the imported targets by name.
+# All are Debian 12 packages installed by scripts/install-deps.sh (see ../shared/NOTES.md for quirks).
+find_package(PkgConfig REQUIRED)
+find_package(Threads REQUIRED)
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(nlohmann_json 3 REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(fmt REQUIRED)
+find_package(spdlog REQUIRED)
+find_package(TBB REQUIRED)
+find_package(Open3D REQUIRED)
+find_package(embree 3 REQUIRED)
+find_package(spectra REQUIRED PATHS /usr/share/spectra/cmake)
+find_package(OpenCV REQUIRED COMPONENTS core imgproc imgcodecs video tracking)
+find_package(TinyGLTF REQUIRED)
+find_package(glfw3 REQUIRED)
+set(OpenGL_GL_PREFERENCE GLVND)
+find_package(OpenGL REQUIRED)
+pkg_check_modules(LIBAV REQUIRED IMPORTED_TARGET libavformat libavcodec libavutil libswscale)
+pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
+
+if(SIMTREE_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+endif()
+if(SIMTREE_BUILD_BENCH)
+  find_package(benchmark REQUIRED)
+  # PCL's CMake config fails on Debian 12 (VTK wants MPI): use pkg-config. Only bench/ uses PCL.
+  pkg_check_modules(PCL IMPORTED_TARGET pcl_registration-1.13 pcl_features-1.13 pcl_kdtree-1.13
+                    pcl_search-1.13 pcl_common-1.13)
+endif()

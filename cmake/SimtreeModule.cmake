@@ -1,0 +1,61 @@
+# Helpers that give every stage library, test suite and benchmark the same shape.
+
+set(SIMTREE_WARNING_FLAGS -Wall -Wextra -Wpedantic -Wshadow=local -Wno-unused-parameter)
+if(SIMTREE_WERROR)
+  list(APPEND SIMTREE_WARNING_FLAGS -Werror)
+endif()
+
+if(SIMTREE_SANITIZE)
+  add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer
+                      -fno-sanitize-recover=undefined)
+  add_link_options(-fsanitize=address,undefined)
+endif()
+
+# simtree_add_module(<name> SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
+# Builds the static library simtree_<name> (alias simtree::<name>) from src/simtree/<name>/.
+function(simtree_add_module name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  add_library(simtree_${name} STATIC ${ARG_SOURCES})
+  add_library(simtree::${name} ALIAS simtree_${name})
+  target_include_directories(simtree_${name} PUBLIC ${PROJECT_SOURCE_DIR}/src)
+  target_link_libraries(simtree_${name} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  target_compile_options(simtree_${name} PRIVATE ${SIMTREE_WARNING_FLAGS})
+  set_target_properties(simtree_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+endfunction()
+
+# simtree_add_test_suite(<name> SOURCES ... DEPS ... [LABELS fast|slow ...] [TIMEOUT seconds])
+# One GoogleTest executable per suite; each test case becomes a CTest test carrying LABELS.
+# Tests find the shared data through SIMTREE_SHARED_DATA_DIR and write under SIMTREE_TEST_TMP_DIR.
+function(simtree_add_test_suite name)
+  cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
+  if(NOT ARG_LABELS)
+    set(ARG_LABELS fast)
+  endif()
+  if(NOT ARG_TIMEOUT)
+    set(ARG_TIMEOUT 300)
+  endif()
+  add_executable(simtree_${name}_tests ${ARG_SOURCES})
+  target_link_libraries(simtree_${name}_tests PRIVATE ${ARG_DEPS} GTest::gtest GTest::gmock
+                        GTest::gtest_main)
+  target_include_directories(simtree_${name}_tests PRIVATE ${PROJECT_SOURCE_DIR}/tests)
+  target_compile_options(simtree_${name}_tests PRIVATE ${SIMTREE_WARNING_FLAGS})
+  target_compile_definitions(simtree_${name}_tests PRIVATE
+    SIMTREE_SHARED_DATA_DIR="${SIMTREE_SHARED_DIR}/data"
+    SIMTREE_TEST_TMP_DIR="${CMAKE_BINARY_DIR}/test_tmp/${name}"
+    SIMTREE_CLI_PATH="$<TARGET_FILE_DIR:simtree_${name}_tests>/simtree"
+    SIMTREE_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  gtest_discover_tests(simtree_${name}_tests
+    DISCOVERY_MODE PRE_TEST
+    WORKING_DIRECTORY ${CMAKE_BINARY_DIR}
+    PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT})
+endfunction()
+
+# simtree_add_benchmark(<name> SOURCES ... DEPS ...): a Google Benchmark executable in bin/.
+function(simtree_add_benchmark name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_executable(bench_${name} ${ARG_SOURCES})
+  target_link_libraries(bench_${name} PRIVATE ${ARG_DEPS} benchmark::benchmark)
+  target_compile_options(bench_${name} PRIVATE ${SIMTREE_WARNING_FLAGS})
+  target_compile_definitions(bench_${name} PRIVATE
+    SIMTREE_SHARED_DATA_DIR="${SIMTREE_SHARED_DIR}/data")
+endfunction()

@@ -1,0 +1,103 @@
+#include "simtree/core/json_util.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "simtree/core/error.h"
+
+namespace simtree {
+namespace {
+
+std::string TypeName(const nlohmann::json& v) { return v.type_name(); }
+
+}  // namespace
+
+nlohmann::json ParseJson(const std::string& text, const std::string& source) {
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    // Turn the byte offset into a line and column a person can go to.
+    size_t line = 1, column = 1;
+    const size_t end = std::min<size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
+    for (size_t i = 0; i < end; ++i) {
+      if (text[i] == '\n') {
+        ++line;
+        column = 1;
+      } else {
+        ++column;
+      }
+    }
+    std::string what = e.what();
+    const size_t cut = what.find("syntax error");
+    if (cut != std::string::npos) what = what.substr(cut);
+    throw InputError(source, fmt::format("line {}, column {}", line, column),
+                     text.empty() ? "expected a JSON document, the file is empty"
+                                  : fmt::format("invalid JSON ({})", what));
+  }
+}
+
+std::string Member(const std::string& at, const std::string& key) {
+  return at.empty() ? key : at + "." + key;
+}
+
+std::string Element(const std::string& at, size_t index) {
+  return fmt::format("{}[{}]", at, index);
+}
+
+void JsonReader::Fail(const std::string& at, const std::string& message) const {
+  throw InputError(source_, at, message);
+}
+
+bool JsonReader::Has(const nlohmann::json& obj, const std::string& key) const {
+  return obj.is_object() && obj.contains(key);
+}
+
+const nlohmann::json& JsonReader::Field(const nlohmann::json& obj, const std::string& key,
+                                        const std::string& at) const {
+  Object(obj, at);
+  auto it = obj.find(key);
+  if (it == obj.end()) Fail(Member(at, key), "missing (required field)");
+  return *it;
+}
+
+double JsonReader::Number(const nlohmann::json& value, const std::string& at) const {
+  if (!value.is_number()) Fail(at, fmt::format("expected a number, got {}", TypeName(value)));
+  const double x = value.get<double>();
+  if (!std::isfinite(x)) Fail(at, "expected a finite number");
+  return x;
+}
+
+int JsonReader::Integer(const nlohmann::json& value, const std::string& at) const {
+  if (!value.is_number_integer()) {
+    Fail(at, fmt::format("expected an integer, got {}", value.dump()));
+  }
+  const auto x = value.get<long long>();
+  if (x < INT32_MIN || x > INT32_MAX) Fail(at, fmt::format("integer {} out of range", x));
+  return static_cast<int>(x);
+}
+
+std::string JsonReader::String(const nlohmann::json& value, const std::string& at) const {
+  if (!value.is_string()) Fail(at, fmt::format("expected a string, got {}", TypeName(value)));
+  return value.get<std::string>();
+}
+
+const nlohmann::json& JsonReader::Array(const nlohmann::json& value, const std::string& at) const {
+  if (!value.is_array()) Fail(at, fmt::format("expected an array, got {}", TypeName(value)));
+  return value;
+}
+
+const nlohmann::json& JsonReader::Object(const nlohmann::json& value, const std::string& at) const {
+  if (!value.is_object()) Fail(at, fmt::format("expected an object, got {}", TypeName(value)));
+  return value;
+}
+
+Eigen::Vector3d JsonReader::Vector3(const nlohmann::json& value, const std::string& at) const {
+  if (!value.is_array() || value.size() != 3) {
+    Fail(at, fmt::format("expected 3 numbers [x, y, z], got {}", value.dump()));
+  }
+  return {Number(value[0], Element(at, 0)), Number(value[1], Element(at, 1)),
+          Number(value[2], Element(at, 2))};
+}
+
+}  // namespace simtree
