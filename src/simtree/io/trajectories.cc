@@ -1,0 +1,398 @@
+#include "simtree/io/trajectories.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "simtree/core/atomic_file.h"
+#include "simtree/core/error.h"
+#include "simtree/core/json_util.h"
+
+namespace simtree {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string_view Trim(std::string_view s) {
+  while (!s.empty() && (s.back() == '\r' || s.back() == ' ' || s.back() == '\t'))
+    s.remove_suffix(1);
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  return s;
+}
+
+std::vector<std::string_view> SplitCommas(std::string_view line) {
+  std::vector<std::string_view> fields;
+  size_t start = 0;
+  while (true) {
+    const size_t comma = line.find(',', start);
+    fields.push_back(
+        Trim(line.substr(start, comma == std::string_view::npos ? line.npos : comma - start)));
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return fields;
+}
+
+bool ParseInt(std::string_view s, int* out) {
+  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), *out);
+  return ec == std::errc() && ptr == s.data() + s.size() && !s.empty();
+}
+
+bool ParseDouble(std::string_view s, double* out) {
+  if (s.empty()) return false;
+  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), *out);
+  return ec == std::errc() && ptr == s.data() + s.size();
+}
+
+bool IsNaNWord(std::string_view s) {
+  std::string lower(s);
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  return lower == "nan" || lower == "-nan";
+}
+
+std::string Quote(std::string_view s) {
+  // fmt rather than operator+: GCC 12 warns (-Wrestrict) on the inlined concatenation.
+  return fmt::format("\"{}\"", s.substr(0, std::min<size_t>(s.size(), 60)));
+}
+
+// The checks a writer makes before writing (a reader checks the same while parsing).
+void CheckTrajectories(const Trajectories& t, const std::string& source) {
+  if (t.frames.size() != t.times_s.size()) {
+    throw InputError(
+        source, "",
+        fmt::format("{} frame numbers but {} times", t.frames.size(), t.times_s.size()));
+  }
+  if (t.frames.empty()) throw InputError(source, "", "expected at least one frame, got none");
+  if (t.tracks.empty()) throw InputError(source, "", "expected at least one marker, got none");
+  for (size_t i = 0; i < t.frames.size(); ++i) {
+    if (!std::isfinite(t.times_s[i])) {
+      throw InputError(source, fmt::format("frame {}", t.frames[i]), "time is not finite");
+    }
+    if (i > 0 && (t.frames[i] <= t.frames[i - 1] || t.times_s[i] <= t.times_s[i - 1])) {
+      throw InputError(source, fmt::format("frame {}", t.frames[i]),
+                       "expected frame numbers and times to increase");
+    }
+  }
+  std::vector<int> ids;
+  for (const MarkerTrack& track : t.tracks) {
+    ids.push_back(track.marker);
+    if (track.positions.size() != t.frames.size() || track.valid.size() != t.frames.size()) {
+      throw InputError(source, fmt::format("marker {}", track.marker),
+                       fmt::format("expected {} frames, got {} positions and {} flags",
+                                   t.frames.size(), track.positions.size(), track.valid.size()));
+    }
+    for (size_t i = 0; i < t.frames.size(); ++i) {
+      if (track.valid[i] && !track.positions[i].allFinite()) {
+        throw InputError(source, fmt::format("frame {}, marker {}", t.frames[i], track.marker),
+                         "valid position is not finite");
+      }
+    }
+  }
+  std::sort(ids.begin(), ids.end());
+  if (std::adjacent_find(ids.begin(), ids.end()) != ids.end()) {
+    throw InputError(source, "", "marker ids repeat");
+  }
+}
+
+}  // namespace
+
+int MarkerList::IndexOf(int id) const {
+  for (size_t i = 0; i < markers.size(); ++i) {
+    if (markers[i].id == id) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+const MarkerSpec* MarkerList::Find(int id) const {
+  const int i = IndexOf(id);
+  return i < 0 ? nullptr : &markers[i];
+}
+
+int MarkerTrack::valid_count() const {
+  return static_cast<int>(std::count(valid.begin(), valid.end(), true));
+}
+
+int Trajectories::IndexOf(int marker) const {
+  for (size_t i = 0; i < tracks.size(); ++i) {
+    if (tracks[i].marker == marker) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+const MarkerTrack* Trajectories::Find(int marker) const {
+  const int i = IndexOf(marker);
+  return i < 0 ? nullptr : &tracks[i];
+}
+
+void Trajectories::AddFrame(int frame, double time_s, const std::vector<Eigen::Vector3d>& positions,
+                            const std::vector<bool>& valid) {
+  if (positions.size() != tracks.size() || valid.size() != tracks.size()) {
+    throw InputError("<memory>", fmt::format("frame {}", frame),
+                     fmt::format("expected {} markers, got {} positions and {} flags",
+                                 tracks.size(), positions.size(), valid.size()));
+  }
+  frames.push_back(frame);
+  times_s.push_back(time_s);
+  for (size_t m = 0; m < tracks.size(); ++m) {
+    tracks[m].valid.push_back(valid[m]);
+    tracks[m].positions.push_back(valid[m] ? positions[m] : Eigen::Vector3d::Constant(kNaN));
+  }
+}
+
+Trajectories ParseTrajectoriesCsv(const std::string& text, const std::string& source) {
+  Trajectories out;
+  std::unordered_map<int, int> track_of;  // marker id -> index into out.tracks
+  std::vector<bool> seen_in_frame;
+  int seen_count = 0;
+  int line_number = 0;
+  size_t pos = 0;
+  bool have_first_line = false, have_header = false;
+  auto fail = [&](const std::string& message) -> void {
+    throw InputError(source, fmt::format("line {}", line_number), message);
+  };
+  auto close_frame = [&] {
+    if (out.frames.empty()) return;
+    if (seen_count != out.marker_count()) {
+      for (const MarkerTrack& track : out.tracks) {
+        if (!seen_in_frame[track_of[track.marker]]) {
+          throw InputError(source, fmt::format("frame {}", out.frames.back()),
+                           fmt::format("marker {} is missing (every marker must appear in every "
+                                       "frame, with valid 0 when lost)",
+                                       track.marker));
+        }
+      }
+    }
+  };
+  while (pos < text.size()) {
+    const size_t eol = std::min(text.find('\n', pos), text.size());
+    const std::string_view line = Trim(std::string_view(text).substr(pos, eol - pos));
+    pos = eol + 1;
+    ++line_number;
+    if (!have_first_line) {
+      if (line != kTrajectoriesFirstLine) {
+        fail(fmt::format("expected the first line \"{}\", got {}", kTrajectoriesFirstLine,
+                         Quote(line)));
+      }
+      have_first_line = true;
+      continue;
+    }
+    if (line.empty()) continue;
+    if (!have_header) {
+      if (line != kTrajectoriesHeader) {
+        fail(fmt::format("expected the header \"{}\", got {}", kTrajectoriesHeader, Quote(line)));
+      }
+      have_header = true;
+      continue;
+    }
+    const std::vector<std::string_view> f = SplitCommas(line);
+    if (f.size() != 7) {
+      fail(fmt::format("expected 7 fields \"frame,time_s,marker,x,y,z,valid\", got {}", f.size()));
+    }
+    int frame = 0, marker = 0, valid = 0;
+    double time = 0;
+    if (!ParseInt(f[0], &frame))
+      fail(fmt::format("frame: expected an integer, got {}", Quote(f[0])));
+    if (!ParseDouble(f[1], &time) || !std::isfinite(time)) {
+      fail(fmt::format("time_s: expected a finite number, got {}", Quote(f[1])));
+    }
+    if (!ParseInt(f[2], &marker)) {
+      fail(fmt::format("marker: expected an integer id, got {}", Quote(f[2])));
+    }
+    if (!ParseInt(f[6], &valid) || (valid != 0 && valid != 1)) {
+      fail(fmt::format("valid: expected 0 or 1, got {}", Quote(f[6])));
+    }
+    Eigen::Vector3d p = Eigen::Vector3d::Constant(kNaN);
+    for (int k = 0; k < 3; ++k) {
+      const std::string_view v = f[3 + k];
+      double x = kNaN;
+      if (v.empty() || IsNaNWord(v)) {
+        if (valid) fail(fmt::format("{}: a valid row needs a finite coordinate", "xyz"[k]));
+      } else if (!ParseDouble(v, &x) || (valid && !std::isfinite(x))) {
+        fail(fmt::format("{}: expected a number in metres, got {}", "xyz"[k], Quote(v)));
+      }
+      p[k] = x;
+    }
+    const bool new_frame = out.frames.empty() || frame != out.frames.back();
+    if (new_frame) {
+      close_frame();
+      if (!out.frames.empty()) {
+        if (frame < out.frames.back()) {
+          fail(
+              fmt::format("frame {} after frame {}: expected frames in increasing order, each "
+                          "frame's rows together",
+                          frame, out.frames.back()));
+        }
+        if (time <= out.times_s.back()) {
+          fail(fmt::format("time_s {} is not after the previous frame's {}", time,
+                           out.times_s.back()));
+        }
+      }
+      out.frames.push_back(frame);
+      out.times_s.push_back(time);
+      std::fill(seen_in_frame.begin(), seen_in_frame.end(), false);
+      seen_count = 0;
+    } else if (time != out.times_s.back()) {
+      fail(fmt::format("time_s {} differs from {} on the same frame {}", time, out.times_s.back(),
+                       frame));
+    }
+    auto it = track_of.find(marker);
+    if (it == track_of.end()) {
+      if (out.frames.size() > 1) {
+        fail(
+            fmt::format("marker {} first appears in frame {} (every marker must appear in every "
+                        "frame)",
+                        marker, frame));
+      }
+      it = track_of.emplace(marker, out.marker_count()).first;
+      out.tracks.push_back(MarkerTrack{marker, {}, {}});
+      seen_in_frame.push_back(false);
+    }
+    const int m = it->second;
+    if (seen_in_frame[m]) fail(fmt::format("marker {} appears twice in frame {}", marker, frame));
+    seen_in_frame[m] = true;
+    ++seen_count;
+    out.tracks[m].positions.push_back(valid ? p : Eigen::Vector3d::Constant(kNaN));
+    out.tracks[m].valid.push_back(valid == 1);
+  }
+  if (!have_first_line) {
+    throw InputError(source, "", "expected a simtree.trajectories file, the file is empty");
+  }
+  if (!have_header) throw InputError(source, "", "expected the header line, got end of file");
+  if (out.frames.empty()) throw InputError(source, "", "expected at least one frame, got none");
+  close_frame();
+  return out;
+}
+
+Trajectories ReadTrajectoriesCsv(const std::filesystem::path& path) {
+  return ParseTrajectoriesCsv(ReadFile(path), path.string());
+}
+
+std::string TrajectoriesToCsv(const Trajectories& t) {
+  CheckTrajectories(t, "<trajectories>");
+  std::string out;
+  out.reserve(64 + t.frames.size() * t.tracks.size() * 48);
+  out += kTrajectoriesFirstLine;
+  out += '\n';
+  out += kTrajectoriesHeader;
+  out += '\n';
+  for (size_t i = 0; i < t.frames.size(); ++i) {
+    for (const MarkerTrack& track : t.tracks) {
+      if (track.valid[i]) {
+        const Eigen::Vector3d& p = track.positions[i];
+        fmt::format_to(std::back_inserter(out), "{},{:.6f},{},{:.6f},{:.6f},{:.6f},1\n",
+                       t.frames[i], t.times_s[i], track.marker, p.x(), p.y(), p.z());
+      } else {
+        fmt::format_to(std::back_inserter(out), "{},{:.6f},{},,,,0\n", t.frames[i], t.times_s[i],
+                       track.marker);
+      }
+    }
+  }
+  return out;
+}
+
+void WriteTrajectoriesCsv(const Trajectories& trajectories, const std::filesystem::path& path) {
+  WriteFileAtomically(path, TrajectoriesToCsv(trajectories));
+}
+
+void CheckMarkerLinks(const MarkerList& list, const std::string& source) {
+  std::unordered_map<int, int> index;
+  for (size_t i = 0; i < list.markers.size(); ++i) {
+    if (!index.emplace(list.markers[i].id, static_cast<int>(i)).second) {
+      throw InputError(source, Element("markers", i),
+                       fmt::format("marker id {} appears twice", list.markers[i].id));
+    }
+  }
+  for (size_t i = 0; i < list.markers.size(); ++i) {
+    const MarkerSpec& m = list.markers[i];
+    if (m.parent == -1) continue;
+    if (m.parent == m.id) {
+      throw InputError(source, Member(Element("markers", i), "parent"),
+                       fmt::format("marker {} links to itself", m.id));
+    }
+    if (!index.count(m.parent)) {
+      throw InputError(source, Member(Element("markers", i), "parent"),
+                       fmt::format("marker {} links to marker {}, which is not in the list "
+                                   "(expected -1 for the root or an existing id)",
+                                   m.id, m.parent));
+    }
+    // Walk up: a chain longer than the list means a cycle.
+    int at = m.parent;
+    for (size_t steps = 0; at != -1; ++steps) {
+      if (steps > list.markers.size()) {
+        throw InputError(source, Member(Element("markers", i), "parent"),
+                         fmt::format("the links from marker {} form a cycle", m.id));
+      }
+      at = list.markers[index[at]].parent;
+    }
+  }
+}
+
+MarkerList ParseMarkersJson(const std::string& text, const std::string& source) {
+  const nlohmann::json doc = ParseJson(text, source);
+  const JsonReader r(source);
+  r.Object(doc, "");
+  const std::string format = r.String(r.Field(doc, "format", ""), "format");
+  if (format != kMarkersFormat) {
+    r.Fail("format", fmt::format("expected \"{}\", got \"{}\"", kMarkersFormat, format));
+  }
+  const int version = r.Integer(r.Field(doc, "version", ""), "version");
+  if (version != kMarkersFormatVersion) {
+    r.Fail("version", fmt::format("expected {}, got {}", kMarkersFormatVersion, version));
+  }
+  MarkerList out;
+  const nlohmann::json& markers = r.Array(r.Field(doc, "markers", ""), "markers");
+  if (markers.empty()) r.Fail("markers", "expected at least one marker, got none");
+  for (size_t i = 0; i < markers.size(); ++i) {
+    const std::string at = Element("markers", i);
+    const nlohmann::json& m = markers[i];
+    MarkerSpec spec;
+    spec.id = r.Integer(r.Field(m, "id", at), Member(at, "id"));
+    if (spec.id < 0) r.Fail(Member(at, "id"), fmt::format("expected an id >= 0, got {}", spec.id));
+    spec.parent = r.Integer(r.Field(m, "parent", at), Member(at, "parent"));
+    spec.label =
+        r.Has(m, "label") ? r.String(m["label"], Member(at, "label")) : fmt::format("M{}", spec.id);
+    if (r.Has(m, "branch")) {
+      spec.branch = r.Integer(m["branch"], Member(at, "branch"));
+      if (*spec.branch < 0) {
+        r.Fail(Member(at, "branch"),
+               fmt::format("expected a branch id >= 0, got {}", *spec.branch));
+      }
+    }
+    out.markers.push_back(std::move(spec));
+  }
+  CheckMarkerLinks(out, source);
+  return out;
+}
+
+MarkerList ReadMarkersJson(const std::filesystem::path& path) {
+  return ParseMarkersJson(ReadFile(path), path.string());
+}
+
+std::string MarkersToJson(const MarkerList& list) {
+  CheckMarkerLinks(list, "<markers>");
+  nlohmann::ordered_json doc;
+  doc["format"] = kMarkersFormat;
+  doc["version"] = kMarkersFormatVersion;
+  doc["markers"] = nlohmann::ordered_json::array();
+  for (const MarkerSpec& m : list.markers) {
+    nlohmann::ordered_json j;
+    j["id"] = m.id;
+    j["label"] = m.label;
+    j["parent"] = m.parent;
+    if (m.branch) j["branch"] = *m.branch;
+    doc["markers"].push_back(std::move(j));
+  }
+  return doc.dump(1) + "\n";
+}
+
+void WriteMarkersJson(const MarkerList& markers, const std::filesystem::path& path) {
+  WriteFileAtomically(path, MarkersToJson(markers));
+}
+
+}  // namespace simtree
