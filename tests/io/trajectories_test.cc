@@ -107,50 +107,5 @@ TEST(Trajectories, WriterRefusesWhatTheReaderWouldRefuse) {
   EXPECT_THROW(t.AddFrame(9, 1.0, {Eigen::Vector3d::Zero()}, {true}), InputError);
 }
 
-TEST(Markers, RoundTripWithOptionalBranchAndDefaultLabel) {
-  const std::string text = R"({"format": "simtree.markers", "version": 1, "markers": [
-      {"id": 0, "label": "trunk", "parent": -1, "branch": 0},
-      {"id": 4, "parent": 0},
-      {"id": 2, "label": "twig", "parent": 4, "branch": 7}]})";
-  const MarkerList list = ParseMarkersJson(text, "m.json");
-  ASSERT_EQ(list.markers.size(), 3u);
-  EXPECT_EQ(list.markers[1].label, "M4");
-  EXPECT_FALSE(list.markers[1].branch.has_value());
-  EXPECT_EQ(*list.markers[2].branch, 7);
-  EXPECT_EQ(list.Find(2)->parent, 4);
-  EXPECT_EQ(list.IndexOf(9), -1);
-  const auto dir = test::TempDir();
-  WriteMarkersJson(list, dir / "m.json");
-  const MarkerList back = ReadMarkersJson(dir / "m.json");
-  EXPECT_EQ(MarkersToJson(back), MarkersToJson(list));
-}
-
-TEST(Markers, BadListsSayWhatIsWrong) {
-  const auto doc = [](const std::string& markers) {
-    return R"({"format": "simtree.markers", "version": 1, "markers": )" + markers + "}";
-  };
-  const std::vector<BadCsv> cases = {
-      {"format", R"({"format": "x", "version": 1, "markers": []})", "expected \"simtree.markers\""},
-      {"version", R"({"format": "simtree.markers", "version": 2, "markers": []})", "expected 1"},
-      {"none", doc("[]"), "at least one marker"},
-      {"missing parent", doc(R"([{"id": 0, "parent": -1}, {"id": 1, "parent": 5}])"),
-       "markers[1].parent: marker 1 links to marker 5, which is not in the list"},
-      {"self", doc(R"([{"id": 1, "parent": 1}])"), "links to itself"},
-      {"cycle", doc(R"([{"id": 1, "parent": 2}, {"id": 2, "parent": 1}])"), "form a cycle"},
-      {"repeat", doc(R"([{"id": 1, "parent": -1}, {"id": 1, "parent": -1}])"), "appears twice"},
-      {"no id", doc(R"([{"parent": -1}])"), "markers[0].id: missing"},
-      {"negative branch", doc(R"([{"id": 0, "parent": -1, "branch": -2}])"), "branch id >= 0"},
-  };
-  for (const BadCsv& c : cases) {
-    try {
-      ParseMarkersJson(c.text, "bad.json");
-      ADD_FAILURE() << c.name << ": no error";
-    } catch (const InputError& e) {
-      EXPECT_THAT(e.what(), HasSubstr("bad.json")) << c.name;
-      EXPECT_THAT(e.what(), HasSubstr(c.expected)) << c.name;
-    }
-  }
-}
-
 }  // namespace
 }  // namespace simtree

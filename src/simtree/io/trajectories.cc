@@ -7,11 +7,9 @@
 #include <unordered_map>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "simtree/core/atomic_file.h"
 #include "simtree/core/error.h"
-#include "simtree/core/json_util.h"
 
 namespace simtree {
 namespace {
@@ -101,18 +99,6 @@ void CheckTrajectories(const Trajectories& t, const std::string& source) {
 }
 
 }  // namespace
-
-int MarkerList::IndexOf(int id) const {
-  for (size_t i = 0; i < markers.size(); ++i) {
-    if (markers[i].id == id) return static_cast<int>(i);
-  }
-  return -1;
-}
-
-const MarkerSpec* MarkerList::Find(int id) const {
-  const int i = IndexOf(id);
-  return i < 0 ? nullptr : &markers[i];
-}
 
 int MarkerTrack::valid_count() const {
   return static_cast<int>(std::count(valid.begin(), valid.end(), true));
@@ -298,101 +284,6 @@ std::string TrajectoriesToCsv(const Trajectories& t) {
 
 void WriteTrajectoriesCsv(const Trajectories& trajectories, const std::filesystem::path& path) {
   WriteFileAtomically(path, TrajectoriesToCsv(trajectories));
-}
-
-void CheckMarkerLinks(const MarkerList& list, const std::string& source) {
-  std::unordered_map<int, int> index;
-  for (size_t i = 0; i < list.markers.size(); ++i) {
-    if (!index.emplace(list.markers[i].id, static_cast<int>(i)).second) {
-      throw InputError(source, Element("markers", i),
-                       fmt::format("marker id {} appears twice", list.markers[i].id));
-    }
-  }
-  for (size_t i = 0; i < list.markers.size(); ++i) {
-    const MarkerSpec& m = list.markers[i];
-    if (m.parent == -1) continue;
-    if (m.parent == m.id) {
-      throw InputError(source, Member(Element("markers", i), "parent"),
-                       fmt::format("marker {} links to itself", m.id));
-    }
-    if (!index.count(m.parent)) {
-      throw InputError(source, Member(Element("markers", i), "parent"),
-                       fmt::format("marker {} links to marker {}, which is not in the list "
-                                   "(expected -1 for the root or an existing id)",
-                                   m.id, m.parent));
-    }
-    // Walk up: a chain longer than the list means a cycle.
-    int at = m.parent;
-    for (size_t steps = 0; at != -1; ++steps) {
-      if (steps > list.markers.size()) {
-        throw InputError(source, Member(Element("markers", i), "parent"),
-                         fmt::format("the links from marker {} form a cycle", m.id));
-      }
-      at = list.markers[index[at]].parent;
-    }
-  }
-}
-
-MarkerList ParseMarkersJson(const std::string& text, const std::string& source) {
-  const nlohmann::json doc = ParseJson(text, source);
-  const JsonReader r(source);
-  r.Object(doc, "");
-  const std::string format = r.String(r.Field(doc, "format", ""), "format");
-  if (format != kMarkersFormat) {
-    r.Fail("format", fmt::format("expected \"{}\", got \"{}\"", kMarkersFormat, format));
-  }
-  const int version = r.Integer(r.Field(doc, "version", ""), "version");
-  if (version != kMarkersFormatVersion) {
-    r.Fail("version", fmt::format("expected {}, got {}", kMarkersFormatVersion, version));
-  }
-  MarkerList out;
-  const nlohmann::json& markers = r.Array(r.Field(doc, "markers", ""), "markers");
-  if (markers.empty()) r.Fail("markers", "expected at least one marker, got none");
-  for (size_t i = 0; i < markers.size(); ++i) {
-    const std::string at = Element("markers", i);
-    const nlohmann::json& m = markers[i];
-    MarkerSpec spec;
-    spec.id = r.Integer(r.Field(m, "id", at), Member(at, "id"));
-    if (spec.id < 0) r.Fail(Member(at, "id"), fmt::format("expected an id >= 0, got {}", spec.id));
-    spec.parent = r.Integer(r.Field(m, "parent", at), Member(at, "parent"));
-    spec.label =
-        r.Has(m, "label") ? r.String(m["label"], Member(at, "label")) : fmt::format("M{}", spec.id);
-    if (r.Has(m, "branch")) {
-      spec.branch = r.Integer(m["branch"], Member(at, "branch"));
-      if (*spec.branch < 0) {
-        r.Fail(Member(at, "branch"),
-               fmt::format("expected a branch id >= 0, got {}", *spec.branch));
-      }
-    }
-    out.markers.push_back(std::move(spec));
-  }
-  CheckMarkerLinks(out, source);
-  return out;
-}
-
-MarkerList ReadMarkersJson(const std::filesystem::path& path) {
-  return ParseMarkersJson(ReadFile(path), path.string());
-}
-
-std::string MarkersToJson(const MarkerList& list) {
-  CheckMarkerLinks(list, "<markers>");
-  nlohmann::ordered_json doc;
-  doc["format"] = kMarkersFormat;
-  doc["version"] = kMarkersFormatVersion;
-  doc["markers"] = nlohmann::ordered_json::array();
-  for (const MarkerSpec& m : list.markers) {
-    nlohmann::ordered_json j;
-    j["id"] = m.id;
-    j["label"] = m.label;
-    j["parent"] = m.parent;
-    if (m.branch) j["branch"] = *m.branch;
-    doc["markers"].push_back(std::move(j));
-  }
-  return doc.dump(1) + "\n";
-}
-
-void WriteMarkersJson(const MarkerList& markers, const std::filesystem::path& path) {
-  WriteFileAtomically(path, MarkersToJson(markers));
 }
 
 }  // namespace simtree

@@ -1,6 +1,7 @@
 #pragma once
-// Marker trajectories and the marker list of a pull test (CONTRACTS.md §1 and §2; prose in
-// docs/formats.md):
+// Marker trajectories of a pull test (CONTRACTS.md §2; prose in docs/formats.md). The marker list
+// markers.json (how markers link into the simplified tree of paper Fig. 8) is read by
+// io/capture.h (ReadMarkersJson).
 //
 //  - trajectories.csv (`simtree.trajectories` v1): what `track` writes, what `synth` writes as
 //    ground truth and what `identify` reads. A comment line
@@ -8,11 +9,8 @@
 //    `frame,time_s,marker,x,y,z,valid`, then one row per (frame, marker): the marker centre in the
 //    pull camera's frame (OpenCV axes, metres), valid 1 or 0 (occluded or lost; x, y, z then empty
 //    or nan).
-//  - markers.json (`simtree.markers` v1): the markers a user taped on and how they link into the
-//    simplified tree of paper Fig. 8 (no positions).
 
 #include <filesystem>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,25 +21,6 @@ namespace simtree {
 inline constexpr const char* kTrajectoriesFirstLine =
     "# simtree.trajectories v1 frame=camera units=m";
 inline constexpr const char* kTrajectoriesHeader = "frame,time_s,marker,x,y,z,valid";
-inline constexpr const char* kMarkersFormat = "simtree.markers";
-inline constexpr int kMarkersFormatVersion = 1;
-
-// One marker of markers.json. `parent` is the marker this one links to (-1 for a root, the trunk
-// marker); `branch` the id of the branch it sits on in the static tree, when known.
-struct MarkerSpec {
-  int id = 0;
-  std::string label;
-  int parent = -1;
-  std::optional<int> branch;
-};
-
-struct MarkerList {
-  std::vector<MarkerSpec> markers;
-
-  // Index into `markers` of the marker with this id, or -1.
-  int IndexOf(int id) const;
-  const MarkerSpec* Find(int id) const;
-};
 
 // The track of one marker: a position per frame of the owning Trajectories, NaN when not valid.
 struct MarkerTrack {
@@ -77,15 +56,5 @@ std::string TrajectoriesToCsv(const Trajectories& trajectories);
 // Checks the same rules as the reader, then writes atomically. Positions are written in metres
 // with 6 decimals (1 µm), times with 6 decimals.
 void WriteTrajectoriesCsv(const Trajectories& trajectories, const std::filesystem::path& path);
-
-// Parses markers.json; checks the format and version, unique ids, parents that exist and links
-// without cycles. A missing label becomes "M<id>".
-MarkerList ParseMarkersJson(const std::string& text, const std::string& source);
-MarkerList ReadMarkersJson(const std::filesystem::path& path);
-std::string MarkersToJson(const MarkerList& markers);
-void WriteMarkersJson(const MarkerList& markers, const std::filesystem::path& path);
-
-// Throws InputError (naming `source`) when the links are not a forest of known ids.
-void CheckMarkerLinks(const MarkerList& markers, const std::string& source);
 
 }  // namespace simtree
