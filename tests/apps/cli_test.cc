@@ -64,6 +64,9 @@ struct BadInput {
   std::string expected_message;
 };
 
+// Names the case in test output instead of dumping its bytes.
+void PrintTo(const BadInput& bad, std::ostream* os) { *os << bad.name; }
+
 class CliBadInput : public ::testing::TestWithParam<BadInput> {};
 
 TEST_P(CliBadInput, FailsClearlyAndWritesNothing) {
