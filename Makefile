@@ -11,19 +11,26 @@ SIMTREE    := $(BUILD)/bin/simtree
 WERROR     := $(if $(filter true,$(CI)),ON,OFF)
 CMAKE_ARGS := -DSIMTREE_SHARED_DIR=$(SHARED) -DSIMTREE_WERROR=$(WERROR)
 
-.PHONY: all deps build demo test test-fast asan bench format clean
+.PHONY: all deps configure build cli demo test test-fast asan bench format clean
 
 all: build
 
 deps:
 	@scripts/install-deps.sh
 
-build: deps
+configure: deps
 	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release $(CMAKE_ARGS)
+
+# Everything: libraries, the CLI, tests.
+build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
+# Only the CLI (what the demo needs).
+cli: configure
+	cmake --build $(BUILD) -j $(JOBS) --target simtree
+
 # The main job on the built-in default: the authors' tree01 with its parameters, to JSON + mesh.
-demo: build
+demo: cli
 	@scripts/demo.sh $(SIMTREE) $(SHARED)/data out/demo
 
 # Every test (fast and end-to-end) in the Release build.
