@@ -1,0 +1,134 @@
+#include "simtree/eval/identification_metrics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+namespace simtree {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return kNaN;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+ValueScore Score(double truth_f, double truth_z, double f, double z) {
+  ValueScore s;
+  s.truth_frequency_hz = truth_f;
+  s.truth_damping = truth_z;
+  s.frequency_hz = f;
+  s.damping_ratio = z;
+  s.frequency_error = std::isfinite(f) ? std::abs(f / truth_f - 1.0) : kNaN;
+  s.damping_error = std::isfinite(z) ? std::abs(z / truth_z - 1.0) : kNaN;
+  return s;
+}
+
+void Summarize(const std::vector<const ValueScore*>& values, ScoreSummary& summary) {
+  std::vector<double> f, z;
+  for (const ValueScore* v : values) {
+    if (std::isfinite(v->frequency_error)) {
+      f.push_back(v->frequency_error);
+      z.push_back(std::isfinite(v->damping_error) ? v->damping_error : kNaN);
+      ++summary.scored;
+    } else {
+      ++summary.not_estimated;
+    }
+  }
+  z.erase(std::remove_if(z.begin(), z.end(), [](double x) { return std::isnan(x); }), z.end());
+  summary.median_frequency_error = Median(f);
+  summary.median_damping_error = Median(z);
+  summary.max_frequency_error = f.empty() ? kNaN : *std::max_element(f.begin(), f.end());
+  summary.max_damping_error = z.empty() ? kNaN : *std::max_element(z.begin(), z.end());
+}
+
+}  // namespace
+
+LinkScores ScoreLinks(const MaterialsFile& materials, const ModalTruth& truth,
+                      std::optional<EstimatorKind> estimator) {
+  LinkScores out;
+  out.estimator = estimator ? ToString(*estimator) : materials.estimator;
+  for (const LinkMaterial& link : materials.links) {
+    const ModalTruth::Link* t = nullptr;
+    for (const ModalTruth::Link& candidate : truth.links) {
+      if (candidate.child == link.child && candidate.parent == link.parent) t = &candidate;
+    }
+    if (!t) {
+      ++out.summary.no_truth;
+      continue;
+    }
+    const ModalEstimate* e = &link.value;
+    if (estimator) {
+      e = nullptr;
+      for (const auto& [kind, value] : link.estimators) {
+        if (kind == *estimator) e = &value;
+      }
+    }
+    LinkScore s;
+    s.parent = link.parent;
+    s.child = link.child;
+    s.label = link.label;
+    s.status = e ? e->status : EstimateStatus::kFailed;
+    const bool ok = e && e->status == EstimateStatus::kOk;
+    s.value = Score(t->frequency_hz, t->damping_ratio, ok ? e->frequency_hz : kNaN,
+                    ok ? e->damping_ratio : kNaN);
+    out.links.push_back(s);
+  }
+  std::vector<const ValueScore*> values;
+  for (const LinkScore& s : out.links) values.push_back(&s.value);
+  const int no_truth = out.summary.no_truth;
+  Summarize(values, out.summary);
+  out.summary.no_truth = no_truth;
+  return out;
+}
+
+BranchScores ScoreBranches(const Tree& tree, const ModalTruth& truth) {
+  BranchScores out;
+  for (const ModalTruth::BranchTruth& t : truth.branches) {
+    if (t.branch < 0 || t.branch >= tree.size() || !tree.branches[t.branch].material) continue;
+    const Material& m = *tree.branches[t.branch].material;
+    BranchScore s;
+    s.branch = t.branch;
+    s.source = m.source;
+    const Mode& dominant = m.mode(ModeKind::kTwistV);
+    s.value = Score(t.frequency_hz, t.damping_ratio, dominant.frequency_hz, dominant.damping_ratio);
+    out.branches.push_back(s);
+  }
+  std::vector<const ValueScore*> measured, interpolated;
+  for (const BranchScore& s : out.branches) {
+    (s.source == MaterialSource::kMeasured ? measured : interpolated).push_back(&s.value);
+  }
+  Summarize(measured, out.measured);
+  Summarize(interpolated, out.interpolated);
+  return out;
+}
+
+std::string FormatSummary(const std::string& name, const ScoreSummary& s) {
+  return fmt::format(
+      "{:<24} {:>3} scored  median |df/f| {:>6.2f}%  |dzeta/zeta| {:>6.1f}%  (max {:.2f}% / "
+      "{:.1f}%)"
+      "{}",
+      name, s.scored, 100 * s.median_frequency_error, 100 * s.median_damping_error,
+      100 * s.max_frequency_error, 100 * s.max_damping_error,
+      s.not_estimated ? fmt::format(", {} not estimated", s.not_estimated) : "");
+}
+
+std::string FormatLinkScores(const LinkScores& scores) {
+  std::string out = fmt::format(
+      "| link | status | f true | f | err | zeta true | zeta | err |\n"
+      "| --- | --- | --- | --- | --- | --- | --- | --- |\n");
+  for (const LinkScore& s : scores.links) {
+    out += fmt::format("| {} | {} | {:.4f} | {:.4f} | {:.2f}% | {:.4f} | {:.4f} | {:.1f}% |\n",
+                       s.label, ToString(s.status), s.value.truth_frequency_hz,
+                       s.value.frequency_hz, 100 * s.value.frequency_error, s.value.truth_damping,
+                       s.value.damping_ratio, 100 * s.value.damping_error);
+  }
+  return out;
+}
+
+}  // namespace simtree

@@ -1,0 +1,67 @@
+#pragma once
+// Scores of an identification against synth's FEM truth (gt/modal.json): per marker link the
+// relative error of the natural frequency and damping ratio (paper Table IV's quantities), for the
+// chosen estimator and for every other estimator that was run; per branch, the error of the
+// values a simulation-ready tree carries (measured or interpolated).
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "simtree/core/tree.h"
+#include "simtree/identification/materials_file.h"
+#include "simtree/io/ground_truth.h"
+
+namespace simtree {
+
+struct ValueScore {
+  double truth_frequency_hz = 0.0, truth_damping = 0.0;
+  double frequency_hz = 0.0, damping_ratio = 0.0;     // NaN when not estimated
+  double frequency_error = 0.0, damping_error = 0.0;  // relative, |estimate / truth - 1|; NaN
+};
+
+struct LinkScore {
+  int parent = -1, child = 0;
+  std::string label;
+  EstimateStatus status = EstimateStatus::kOk;
+  ValueScore value;
+};
+
+struct ScoreSummary {
+  int scored = 0;         // with a truth and an estimate
+  int not_estimated = 0;  // with a truth, no estimate (status says why)
+  int no_truth = 0;       // estimated but the truth has no such link or branch
+  double median_frequency_error = 0.0, median_damping_error = 0.0;  // NaN when none scored
+  double max_frequency_error = 0.0, max_damping_error = 0.0;
+};
+
+struct LinkScores {
+  std::string estimator;
+  std::vector<LinkScore> links;
+  ScoreSummary summary;
+};
+
+// Links of `materials` against the truth's links (matched by parent and child marker ids), read
+// from `estimator`'s column (default: the file's chosen estimator).
+LinkScores ScoreLinks(const MaterialsFile& materials, const ModalTruth& truth,
+                      std::optional<EstimatorKind> estimator = std::nullopt);
+
+struct BranchScore {
+  int branch = 0;
+  MaterialSource source = MaterialSource::kDefault;
+  ValueScore value;  // the branch's dominant value: its twist mode (which carries it)
+};
+
+struct BranchScores {
+  std::vector<BranchScore> branches;
+  ScoreSummary measured, interpolated;
+};
+
+// Every branch of a simulation-ready tree against the truth's per-branch values.
+BranchScores ScoreBranches(const Tree& simulation_ready, const ModalTruth& truth);
+
+// Markdown-ish tables for reports.
+std::string FormatLinkScores(const LinkScores& scores);
+std::string FormatSummary(const std::string& name, const ScoreSummary& summary);
+
+}  // namespace simtree

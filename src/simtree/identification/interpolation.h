@@ -1,0 +1,64 @@
+#pragma once
+// Materials for branches that carry no marker (paper III-D: "interpolating from the known
+// material properties according to their lengths and thicknesses").
+//
+// Frequency: a cantilever's first frequency scales as f ∝ r / L^2 (Euler-Bernoulli: f ∝
+// sqrt(EI / (mu L^4)) with I ∝ r^4 and mu ∝ r^2). In log space that is a line, fitted on the
+// measured branches: log f = a + b log(r / L^2), or with free exponents log f = a + b log r +
+// c log L when there are enough branches, or just the (log) median when there are few or they do
+// not vary. Leave-one-out error picks among the three, so a tree whose branches all swing near one
+// frequency (a whole-tree mode dominates; real trees often do) is not forced onto the cantilever
+// law. Predictions are clamped to the measured range (paper: "unknown parameters should be in the
+// range of known parameters").
+//
+// Damping: the median of the measured branches of the same level, else of the nearest level with
+// measurements.
+//
+// r is the branch's base radius (its thickness where it bends most), L its length.
+
+#include <string>
+#include <vector>
+
+#include "simtree/core/tree.h"
+
+namespace simtree {
+
+enum class FrequencyModelKind { kMedian, kCantilever, kLengthAndRadius };
+const char* ToString(FrequencyModelKind kind);  // "median", "cantilever", "length_and_radius"
+
+// One measured branch: its dominant frequency and damping.
+struct BranchSample {
+  int branch = 0;
+  double frequency_hz = 0.0;
+  double damping_ratio = 0.0;
+};
+
+struct InterpolationOptions {
+  // Fewest measured branches for the one-slope cantilever fit, and for the two-slope fit.
+  int min_branches_cantilever = 3;
+  int min_branches_two_slopes = 6;
+  bool clamp_to_measured = true;
+};
+
+struct InterpolationModel {
+  FrequencyModelKind kind = FrequencyModelKind::kMedian;
+  std::vector<double> coefficients;                       // a, then the slopes
+  double min_frequency_hz = 0.0, max_frequency_hz = 0.0;  // the measured range
+  double leave_one_out_log_rms = 0.0;  // of log f over the measured branches (NaN with < 2)
+  std::vector<double> level_damping;   // per level, NaN where no branch of that level is measured
+  double median_damping = 0.0;
+  int measured = 0;
+  bool clamp = true;
+
+  // Predicted frequency of a branch of base radius r and length L (clamped when `clamp`).
+  double Frequency(double radius_m, double length_m) const;
+  double Damping(int level) const;
+  // "log f = -0.12 + 0.31 log(r/L^2), leave-one-out 4.1%, 7 branches".
+  std::string Describe() const;
+};
+
+// Fits the model on `samples` (branches of `tree`). Throws InputError when there is none.
+InterpolationModel FitInterpolationModel(const Tree& tree, const std::vector<BranchSample>& samples,
+                                         const InterpolationOptions& options = {});
+
+}  // namespace simtree

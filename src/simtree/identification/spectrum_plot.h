@@ -1,0 +1,24 @@
+#pragma once
+// A picture per link for a person to check an identification: the deflection signal of both
+// planes with the fitted model over it (top), their amplitude spectra with every estimator's
+// frequency and the paper's half-power band (bottom), and the values as text. PNG via OpenCV.
+
+#include <filesystem>
+
+#include "simtree/identification/identify.h"
+
+namespace simtree {
+
+struct SpectrumPlotOptions {
+  int width = 1100;
+  int height = 760;
+  // Highest frequency shown; 0: three times the dominant frequency, at least 4 Hz.
+  double max_frequency_hz = 0.0;
+};
+
+// Writes `path` (PNG) for one link. A link without a signal (missing marker) gets a plot that
+// says so. Throws IoError when the file cannot be written.
+void WriteLinkPlot(const IdentificationResult& result, const LinkIdentification& link,
+                   const std::filesystem::path& path, const SpectrumPlotOptions& options = {});
+
+}  // namespace simtree

@@ -1,0 +1,123 @@
+#include "simtree/identification/identify.h"
+
+#include <cmath>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "simtree/core/error.h"
+#include "simtree/identification/test_signals.h"
+
+namespace simtree {
+namespace {
+
+using ::testing::HasSubstr;
+
+// Three links, each with its own dominant mode, a weaker shared mode and tracker noise.
+SyntheticMarkerTree ThreeLinks() {
+  SyntheticMarkerTree tree;
+  tree.root_motion[0] = {{0.9, 0.025, 0.02, 0.0}};
+  tree.root_motion[2] = {{0.9, 0.025, 0.01, 0.0}};
+  tree.links.resize(3);
+  tree.links[0].rest_direction = {0.3, -1.0, 0.0};
+  tree.links[0].length_m = 0.7;
+  tree.links[0].theta_u = {{1.05, 0.031, 0.10, 0.0}, {2.4, 0.05, 0.02, 0.0}};
+  tree.links[0].theta_w = {{1.05, 0.031, 0.04, 0.0}};
+  tree.links[1].parent = 0;
+  tree.links[1].rest_direction = {1.0, -0.6, 0.2};
+  tree.links[1].length_m = 0.5;
+  tree.links[1].theta_u = {{1.32, 0.045, 0.12, 0.0}};
+  tree.links[1].theta_w = {{1.05, 0.031, 0.03, 0.0}};
+  tree.links[2].parent = 0;
+  tree.links[2].rest_direction = {-1.0, -0.4, 0.3};
+  tree.links[2].length_m = 0.5;
+  tree.links[2].theta_u = {{1.48, 0.058, 0.09, 0.0}};
+  tree.links[2].theta_w = {{1.48, 0.058, 0.05, 0.0}};
+  return tree;
+}
+
+struct Truth {
+  double f, zeta;
+};
+const Truth kTruth[4] = {{0.9, 0.025}, {1.05, 0.031}, {1.32, 0.045}, {1.48, 0.058}};
+
+TEST(Identify, EveryLinkWithinOnePercentInFrequencyAndFifteenInDampingUnderTrackerNoise) {
+  std::vector<MarkerLink> markers;
+  const Trajectories truth = MakeMarkerTrajectories(ThreeLinks(), 30.0, 2.0, 10.0, &markers);
+  TrackerNoiseOptions noise;
+  noise.seed = 4;
+  const IdentificationResult r = IdentifyMaterials(AddTrackerNoise(truth, noise), markers);
+  EXPECT_TRUE(r.release.found) << r.release.note;
+  EXPECT_NEAR(r.window_start_s, 2.0, 0.15);
+  ASSERT_EQ(r.links.size(), 4u);
+  for (int k = 0; k < 4; ++k) {
+    const LinkIdentification& link = r.links[k];
+    ASSERT_TRUE(link.measured()) << link.deflection.link.label << ": " << link.value.message;
+    EXPECT_NEAR(link.value.frequency_hz, kTruth[k].f, 0.01 * kTruth[k].f) << k;
+    EXPECT_NEAR(link.value.damping_ratio, kTruth[k].zeta, 0.15 * kTruth[k].zeta) << k;
+    EXPECT_GT(link.value.frequency_std_hz, 0) << k;
+    ASSERT_EQ(link.estimates.size(), 3u);
+    EXPECT_EQ(link.estimates.front().estimator, kDefaultEstimator);
+    EXPECT_NE(link.Find(EstimatorKind::kHalfPowerFft), nullptr);
+  }
+  const MaterialRanges ranges = r.Ranges();
+  EXPECT_EQ(ranges.measured, 4);
+  EXPECT_NEAR(ranges.min_frequency_hz, 0.9, 0.01);
+  EXPECT_NEAR(ranges.max_frequency_hz, 1.48, 0.015);
+  EXPECT_THAT(FormatRanges(ranges, "test"), HasSubstr("(4 of 4 links measured)"));
+  EXPECT_THAT(FormatLinkTable(r), HasSubstr("M0-M1"));
+}
+
+TEST(Identify, AGivenReleaseTimeAndWindowAreUsed) {
+  std::vector<MarkerLink> markers;
+  const Trajectories t = MakeMarkerTrajectories(ThreeLinks(), 30.0, 2.0, 10.0, &markers);
+  IdentifyOptions options;
+  options.release_time_s = 2.0;
+  options.window_s = 6.0;
+  options.compare_estimators = false;
+  const IdentificationResult r = IdentifyMaterials(t, markers, options);
+  EXPECT_NEAR(r.window_start_s, 2.0, 1e-9);
+  EXPECT_NEAR(r.window_end_s, 8.0 - 1.0 / 30, 1e-6);
+  EXPECT_EQ(r.links[1].estimates.size(), 1u);
+  EXPECT_NEAR(r.links[1].value.frequency_hz, 1.05, 1e-3);
+  options.release_time_s = 99.0;
+  EXPECT_THROW(IdentifyMaterials(t, markers, options), InputError);
+}
+
+TEST(Identify, MissingMarkersAreReportedPerLinkAndNothingTrackedIsAnError) {
+  std::vector<MarkerLink> markers;
+  const Trajectories t = MakeMarkerTrajectories(ThreeLinks(), 30.0, 0.0, 6.0, &markers);
+  markers.push_back({7, "M7", 1, std::nullopt});
+  const IdentificationResult r = IdentifyMaterials(t, markers);
+  ASSERT_EQ(r.links.size(), 5u);
+  EXPECT_EQ(r.links[4].value.status, EstimateStatus::kMissingMarker);
+  EXPECT_FALSE(r.links[4].value.has_frequency());
+  EXPECT_THAT(r.links[4].value.message, HasSubstr("marker 7 has no trajectory"));
+  EXPECT_EQ(r.Ranges().measured, 4);
+
+  const std::vector<MarkerLink> others = {{20, "A", -1, std::nullopt}, {21, "B", 20, std::nullopt}};
+  try {
+    IdentifyMaterials(t, others, {}, "tracks.csv");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("tracks.csv"));
+    EXPECT_THAT(e.what(), HasSubstr("none of the 2 markers"));
+    EXPECT_THAT(e.what(), HasSubstr("markers 0, 1, 2, 3"));
+  }
+}
+
+TEST(Identify, AStillLinkIsFlatNotInvented) {
+  SyntheticMarkerTree tree = ThreeLinks();
+  tree.links[2].theta_u.clear();
+  tree.links[2].theta_w.clear();
+  std::vector<MarkerLink> markers;
+  TrackerNoiseOptions noise;
+  const IdentificationResult r = IdentifyMaterials(
+      AddTrackerNoise(MakeMarkerTrajectories(tree, 30.0, 1.0, 10.0, &markers), noise), markers);
+  // Marker 3 hangs from marker 1, whose link swings; with that swing removed only noise is left.
+  EXPECT_EQ(r.links[3].value.status, EstimateStatus::kFlat) << r.links[3].value.message;
+  EXPECT_FALSE(r.links[3].value.has_damping());
+}
+
+}  // namespace
+}  // namespace simtree

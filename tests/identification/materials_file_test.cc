@@ -1,0 +1,92 @@
+#include "simtree/identification/materials_file.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "simtree/core/error.h"
+#include "simtree/identification/test_signals.h"
+#include "test_util.h"
+
+namespace simtree {
+namespace {
+
+using ::testing::HasSubstr;
+
+IdentificationResult Identified() {
+  SyntheticMarkerTree tree;
+  tree.links.resize(2);
+  tree.links[0].theta_u = {{1.2, 0.03, 0.1, 0.0}};
+  tree.links[0].theta_w = {{1.4, 0.04, 0.06, 0.0}};
+  tree.links[1].parent = 0;
+  tree.links[1].rest_direction = {1, -0.2, 0};
+  tree.links[1].theta_u = {{1.6, 0.05, 0.1, 0.0}};
+  std::vector<MarkerLink> markers;
+  const Trajectories t = MakeMarkerTrajectories(tree, 30, 0, 10, &markers);
+  markers[1].branch = 3;
+  markers[2].branch = 3;               // two links on one branch: the surer one is kept
+  markers.push_back({7, "M7", 2, 4});  // no trajectory
+  return IdentifyMaterials(t, markers);
+}
+
+TEST(MaterialsFile, FromAnIdentificationWithBranchModesAndAMissingLink) {
+  const MaterialsFile m = MaterialsFromIdentification(Identified(), "t.csv");
+  EXPECT_EQ(m.estimator, "damped_sinusoid_fit");
+  ASSERT_EQ(m.links.size(), 4u);
+  EXPECT_EQ(m.links[3].value.status, EstimateStatus::kMissingMarker);
+  ASSERT_EQ(m.branches.size(), 1u);  // branch 4's link has no value, the root has no branch
+  const BranchMaterial& b = m.branches[0];
+  EXPECT_EQ(b.branch, 3);
+  EXPECT_FALSE(b.assumed[0]);
+  EXPECT_TRUE(b.assumed[2]);
+  const LinkMaterial& chosen = b.link_child == 1 ? m.links[1] : m.links[2];
+  EXPECT_DOUBLE_EQ(b.modes[2].frequency_hz, chosen.value.frequency_hz);
+  EXPECT_DOUBLE_EQ(b.modes[0].frequency_hz, chosen.planes[0].frequency_hz);
+  EXPECT_EQ(m.ranges.measured, 2);  // the root marker does not move: flat
+}
+
+TEST(MaterialsFile, JsonRoundTripWritesNullForWhatWasNotEstimated) {
+  const MaterialsFile m = MaterialsFromIdentification(Identified(), "t.csv");
+  const nlohmann::ordered_json j = MaterialsToJson(m);
+  EXPECT_TRUE(j["links"][3]["frequency_hz"].is_null());
+  EXPECT_EQ(j["links"][3]["status"], "missing_marker");
+  EXPECT_EQ(j["links"][1]["estimators"].size(), 3u);
+  const auto dir = test::TempDir();
+  WriteMaterialsJson(m, dir / "m.json");
+  const MaterialsFile back = ReadMaterialsJson(dir / "m.json");
+  EXPECT_EQ(MaterialsToJson(back).dump(), j.dump());
+}
+
+TEST(MaterialsFile, BadFilesNameTheField) {
+  const nlohmann::json good = MaterialsToJson(MaterialsFromIdentification(Identified(), "t.csv"));
+  struct Case {
+    const char* name;
+    std::function<void(nlohmann::json&)> edit;
+    const char* expected;
+  };
+  const std::vector<Case> cases = {
+      {"format", [](auto& j) { j["format"] = "simtree.tree"; }, "expected \"simtree.materials\""},
+      {"ok without value", [](auto& j) { j["links"][1]["frequency_hz"] = nullptr; },
+       "links[1]: status \"ok\" needs a frequency_hz"},
+      {"negative damping", [](auto& j) { j["links"][1]["damping_ratio"] = -0.1; },
+       "links[1].damping_ratio: expected in (0, 1)"},
+      {"status", [](auto& j) { j["links"][0]["status"] = "great"; }, "unknown status"},
+      {"modes", [](auto& j) { j["branches"][0]["modes"].erase(0); }, "expected 3 modes"},
+      {"mode order",
+       [](auto& j) { std::swap(j["branches"][0]["modes"][0], j["branches"][0]["modes"][1]); },
+       "expected the order bend_u, bend_w, twist_v"},
+  };
+  for (const Case& c : cases) {
+    nlohmann::json j = good;
+    c.edit(j);
+    try {
+      MaterialsFromJson(j, "bad.json");
+      ADD_FAILURE() << c.name;
+    } catch (const InputError& e) {
+      EXPECT_THAT(e.what(), HasSubstr("bad.json")) << c.name;
+      EXPECT_THAT(e.what(), HasSubstr(c.expected)) << c.name;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace simtree

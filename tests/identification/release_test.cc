@@ -1,0 +1,65 @@
+#include "simtree/identification/release.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "simtree/identification/test_signals.h"
+
+namespace simtree {
+namespace {
+
+using ::testing::HasSubstr;
+
+SyntheticMarkerTree Pulled() {
+  SyntheticMarkerTree tree;
+  tree.links.resize(1);
+  tree.links[0].theta_u = {{1.2, 0.03, 0.15, 0.0}};  // released from 0.15 rad, at rest velocity
+  tree.links[0].length_m = 0.8;
+  return tree;
+}
+
+TEST(Release, FoundAtTheEndOfTheHoldEvenWithTrackerNoise) {
+  std::vector<MarkerLink> markers;
+  const Trajectories truth = MakeMarkerTrajectories(Pulled(), 30.0, 3.0, 8.0, &markers);
+  for (uint64_t seed : {1, 2, 3}) {
+    TrackerNoiseOptions noise;
+    noise.seed = seed;
+    const ReleaseDetection r = DetectRelease(AddTrackerNoise(truth, noise));
+    EXPECT_TRUE(r.found) << r.note;
+    EXPECT_EQ(r.marker, 1);
+    // Never before the release (a still frame in the decay would break the model), at most
+    // about 0.15 s after it.
+    EXPECT_GE(r.time_s, 3.0 - 1e-9) << r.note;
+    EXPECT_LE(r.time_s, 3.0 + 0.15) << r.note;
+  }
+}
+
+TEST(Release, ARecordThatStartsSwingingOrNeverMovesStartsAtItsFirstFrame) {
+  std::vector<MarkerLink> markers;
+  const ReleaseDetection swinging =
+      DetectRelease(MakeMarkerTrajectories(Pulled(), 30.0, 0.0, 5.0, &markers));
+  EXPECT_FALSE(swinging.found);
+  EXPECT_EQ(swinging.frame_index, 0);
+  EXPECT_THAT(swinging.note, HasSubstr("already swinging"));
+
+  SyntheticMarkerTree still = Pulled();
+  still.links[0].theta_u.clear();
+  const ReleaseDetection flat =
+      DetectRelease(AddTrackerNoise(MakeMarkerTrajectories(still, 30.0, 1.0, 5.0, &markers), {}));
+  EXPECT_FALSE(flat.found);
+  EXPECT_EQ(flat.frame_index, 0);
+  EXPECT_THAT(flat.note, HasSubstr("no marker moves above its noise"));
+}
+
+TEST(Release, FrameAtOrAfter) {
+  Trajectories t;
+  t.tracks = {MarkerTrack{0, {}, {}}};
+  for (int i = 0; i < 5; ++i) t.AddFrame(i, 0.5 * i, {Eigen::Vector3d::Zero()}, {true});
+  EXPECT_EQ(FrameAtOrAfter(t, 0.0), 0);
+  EXPECT_EQ(FrameAtOrAfter(t, 0.7), 2);
+  EXPECT_EQ(FrameAtOrAfter(t, 1.0), 2);
+  EXPECT_EQ(FrameAtOrAfter(t, 9.0), 5);
+}
+
+}  // namespace
+}  // namespace simtree
