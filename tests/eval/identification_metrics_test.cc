@@ -1,0 +1,78 @@
+#include "simtree/eval/identification_metrics.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace simtree {
+namespace {
+
+using ::testing::HasSubstr;
+
+LinkMaterial Link(int parent, int child, double f, double z, EstimateStatus status) {
+  LinkMaterial l;
+  l.parent = parent;
+  l.child = child;
+  l.label = fmt::format("M{}", child);
+  l.value.status = status;
+  if (status == EstimateStatus::kOk) {
+    l.value.frequency_hz = f;
+    l.value.damping_ratio = z;
+  }
+  ModalEstimate paper = l.value;
+  if (status == EstimateStatus::kOk) paper.damping_ratio = 2 * z;
+  l.estimators = {{EstimatorKind::kDampedSinusoidFit, l.value},
+                  {EstimatorKind::kHalfPowerFft, paper}};
+  return l;
+}
+
+TEST(IdentificationMetrics, LinkErrorsAreRelativeAndMediansSkipWhatWasNotEstimated) {
+  ModalTruth truth;
+  truth.links = {{-1, 0, 1.0, 0.02}, {0, 1, 1.2, 0.03}, {1, 2, 1.5, 0.05}, {1, 3, 1.4, 0.04}};
+  MaterialsFile m;
+  m.links = {Link(-1, 0, 1.01, 0.021, EstimateStatus::kOk),
+             Link(0, 1, 1.2, 0.027, EstimateStatus::kOk), Link(1, 2, 0, 0, EstimateStatus::kFlat),
+             Link(1, 3, 1.428, 0.04, EstimateStatus::kOk),
+             Link(3, 9, 1.0, 0.03, EstimateStatus::kOk)};
+  const LinkScores s = ScoreLinks(m, truth);
+  ASSERT_EQ(s.links.size(), 4u);
+  EXPECT_EQ(s.summary.scored, 3);
+  EXPECT_EQ(s.summary.not_estimated, 1);
+  EXPECT_EQ(s.summary.no_truth, 1);
+  EXPECT_NEAR(s.links[0].value.frequency_error, 0.01, 1e-12);
+  EXPECT_NEAR(s.summary.median_frequency_error, 0.01, 1e-12);  // {0.01, 0, 0.02}
+  EXPECT_NEAR(s.summary.median_damping_error, 0.05, 1e-12);    // {0.05, 0.1, 0}
+  EXPECT_NEAR(s.summary.max_damping_error, 0.1, 1e-12);
+  const LinkScores paper = ScoreLinks(m, truth, EstimatorKind::kHalfPowerFft);
+  EXPECT_NEAR(paper.summary.median_damping_error, 1.0, 1e-12);  // {1.1, 0.8, 1.0}
+  EXPECT_THAT(FormatSummary("fit", s.summary), HasSubstr("1 not estimated"));
+  EXPECT_THAT(FormatLinkScores(s), HasSubstr("| M1 | ok | 1.2000 |"));
+}
+
+TEST(IdentificationMetrics, BranchesAreScoredByTheirSource) {
+  Tree tree;
+  for (int b = 0; b < 3; ++b) {
+    Branch branch;
+    branch.id = b;
+    branch.parent = b - 1;
+    branch.nodes = {{Eigen::Vector3d(0, 0, b), 0.1}, {Eigen::Vector3d(0, 0, b + 1), 0.1}};
+    Material m;
+    m.modes[2].frequency_hz = 1.0 + 0.1 * b;
+    m.modes[2].damping_ratio = 0.03;
+    m.source = b == 0 ? MaterialSource::kMeasured : MaterialSource::kInterpolated;
+    branch.material = m;
+    tree.branches.push_back(branch);
+  }
+  ModalTruth truth;
+  truth.branches = {{0, 1.0, 0.03}, {1, 1.0, 0.03}, {2, 1.0, 0.03}};
+  const BranchScores s = ScoreBranches(tree, truth);
+  EXPECT_EQ(s.measured.scored, 1);
+  EXPECT_EQ(s.interpolated.scored, 2);
+  EXPECT_NEAR(s.interpolated.median_frequency_error, 0.15, 1e-12);
+  EXPECT_NEAR(s.measured.median_frequency_error, 0.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace simtree
