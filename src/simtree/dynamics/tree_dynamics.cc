@@ -151,10 +151,11 @@ void DeformNodesSmallTwist(const NodePass& p, const float* __restrict__ hh,
   for (; i < count; ++i) {
     float s = 0, c = 1;
     TwistSinCos(psi[i] * p.q_t, &s, &c);
-    const float alpha = c * au[i] + s * aw[i] + phi[i] * p.q_u;
-    const float beta = c * aw[i] - s * au[i] + phi[i] * p.q_w;
+    // The same operations in the same order as the SSE lanes: bit-identical results.
+    const float alpha = (c * au[i] + s * aw[i]) + phi[i] * p.q_u;
+    const float beta = (c * aw[i] - s * au[i]) + phi[i] * p.q_w;
     for (int a = 0; a < 3; ++a) {
-      out[3 * i + a] = p.o[a] + hh[i] * p.rv[a] + alpha * p.ru[a] + beta * p.rw[a];
+      out[3 * i + a] = (p.o[a] + hh[i] * p.rv[a]) + (alpha * p.ru[a] + beta * p.rw[a]);
     }
   }
 }

@@ -5,6 +5,7 @@
 #include <random>
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 #include <Eigen/Geometry>
 
 #include "simtree/core/error.h"
@@ -134,7 +135,8 @@ Eigen::Vector3d WindField::VelocityExact(const Eigen::Vector3d& point, double ti
 }
 
 void WindField::SampleGrid(double time_s) {
-  for (int z = 0; z < grid_size_.z(); ++z) {
+  // Lattice points x modes cosines: worth spreading over the cores for big crowns.
+  tbb::parallel_for(0, grid_size_.z(), [&](int z) {
     for (int y = 0; y < grid_size_.y(); ++y) {
       for (int x = 0; x < grid_size_.x(); ++x) {
         const Eigen::Vector3d p = grid_origin_ + cell_ * Eigen::Vector3d(x, y, z);
@@ -142,7 +144,7 @@ void WindField::SampleGrid(double time_s) {
             VelocityExact(p, time_s).cast<float>();
       }
     }
-  }
+  });
 }
 
 Eigen::Vector3d WindField::Velocity(const Eigen::Vector3d& point) const {
