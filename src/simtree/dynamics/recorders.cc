@@ -5,9 +5,9 @@
 #include <cstring>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "simtree/core/error.h"
+#include "simtree/io/capture.h"
 
 namespace simtree {
 namespace {
@@ -167,40 +167,36 @@ MarkerTrackWriter::MarkerTrackWriter(std::vector<Marker> markers, std::filesyste
       json_path_(std::move(markers_json_path)) {}
 
 void MarkerTrackWriter::Begin(const TreeDynamics& sim, int frame_count, double fps) {
+  tracks_ = Trajectories{};
   for (const Marker& m : markers_) {
     if (m.branch < 0 || m.branch >= sim.branch_count()) {
       throw InputError(
           "markers", fmt::format("marker {}", m.id),
           fmt::format("expected a branch id in [0, {}], got {}", sim.branch_count() - 1, m.branch));
     }
+    MarkerTrack track;
+    track.marker = m.id;
+    track.positions.reserve(frame_count);
+    track.valid.reserve(frame_count);
+    tracks_.tracks.push_back(std::move(track));
   }
-  csv_ = std::make_unique<AtomicFile>(csv_path_);
-  csv_->stream() << "# simtree.trajectories v1 frame=world units=m\n"
-                 << "frame,time_s,marker,x,y,z,valid\n";
 }
 
 void MarkerTrackWriter::Record(int frame, double time_s, const TreeDynamics& sim) {
-  std::string rows;
-  for (const Marker& m : markers_) {
-    const Eigen::Vector3d p = sim.PointPosition(m.branch, m.arc_length);
-    rows += fmt::format("{},{:.6f},{},{:.6f},{:.6f},{:.6f},1\n", frame, time_s, m.id, p.x(), p.y(),
-                        p.z());
-  }
-  csv_->stream() << rows;
+  std::vector<Eigen::Vector3d> positions;
+  positions.reserve(markers_.size());
+  for (const Marker& m : markers_) positions.push_back(sim.PointPosition(m.branch, m.arc_length));
+  tracks_.AddFrame(frame, time_s, positions, std::vector<bool>(markers_.size(), true));
 }
 
 void MarkerTrackWriter::End() {
-  nlohmann::ordered_json doc;
-  doc["format"] = "simtree.markers";
-  doc["version"] = 1;
-  doc["markers"] = nlohmann::ordered_json::array();
-  for (const Marker& m : markers_) {
-    doc["markers"].push_back(
-        {{"id", m.id}, {"label", m.label}, {"parent", m.parent}, {"branch", m.branch}});
-  }
-  WriteFileAtomically(json_path_, doc.dump(2) + "\n");
-  csv_->Commit();
-  csv_.reset();
+  std::vector<MarkerLink> links;
+  for (const Marker& m : markers_) links.push_back({m.id, m.label, m.parent, m.branch});
+  WriteMarkersJson(links, json_path_);
+  // io's formatter, with the first line saying these are world coordinates.
+  std::string csv = TrajectoriesToCsv(tracks_);
+  csv.replace(0, csv.find('\n'), kWorldTrajectoriesFirstLine);
+  WriteFileAtomically(csv_path_, csv);
 }
 
 // ---- glTF animation

@@ -16,6 +16,7 @@
 #include "simtree/core/tube_mesh.h"
 #include "simtree/dynamics/simulation.h"
 #include "simtree/io/gltf_animation.h"
+#include "simtree/io/trajectories.h"
 
 namespace simtree {
 
@@ -52,8 +53,13 @@ NodeFrames ReadNodeFrames(const std::filesystem::path& path);
 std::vector<Marker> AutoMarkers(const Tree& tree, int max_level,
                                 const std::optional<Rope>& pull = std::nullopt);
 
-// Writes `csv_path` (the trajectory layout, world frame) row by row and, at End(),
-// `markers_json_path` (simtree.markers v1: id, label, parent, branch).
+// The first line of a world-frame trajectory file (the layout of io/trajectories.h, whose files
+// are in the pull camera's frame).
+inline constexpr const char* kWorldTrajectoriesFirstLine =
+    "# simtree.trajectories v1 frame=world units=m";
+
+// Collects marker positions every frame; at End() writes `csv_path` (io/trajectories.h's layout
+// with kWorldTrajectoriesFirstLine) and `markers_json_path` (io/capture.h's markers.json).
 class MarkerTrackWriter : public FrameRecorder {
  public:
   MarkerTrackWriter(std::vector<Marker> markers, std::filesystem::path csv_path,
@@ -62,11 +68,12 @@ class MarkerTrackWriter : public FrameRecorder {
   void Record(int frame, double time_s, const TreeDynamics& sim) override;
   void End() override;
   const std::vector<Marker>& markers() const { return markers_; }
+  const Trajectories& trajectories() const { return tracks_; }
 
  private:
   std::vector<Marker> markers_;
   std::filesystem::path csv_path_, json_path_;
-  std::unique_ptr<AtomicFile> csv_;
+  Trajectories tracks_;
 };
 
 struct AnimationOptions {
