@@ -12,18 +12,18 @@ double NumericDerivative(double (*f)(double), double x, double h = 1e-5) {
 }
 
 TEST(ModeShapes, CantileverClampedAtTheBaseNormalisedAtTheTip) {
-  EXPECT_NEAR(CantileverModeShape(0.0), 0.0, 1e-14);
-  EXPECT_NEAR(CantileverModeSlope(0.0), 0.0, 1e-14);
-  EXPECT_NEAR(CantileverModeShape(1.0), 1.0, 1e-14);
+  EXPECT_NEAR(BendingModeShape(0.0), 0.0, 1e-14);
+  EXPECT_NEAR(BendingModeSlope(0.0), 0.0, 1e-14);
+  EXPECT_NEAR(BendingModeShape(1.0), 1.0, 1e-14);
   // Monotone from base to tip.
   for (double x = 0.01; x <= 1.0; x += 0.01) {
-    EXPECT_GT(CantileverModeShape(x), CantileverModeShape(x - 0.01));
+    EXPECT_GT(BendingModeShape(x), BendingModeShape(x - 0.01));
   }
 }
 
 TEST(ModeShapes, CantileverFreeEndCarriesNoMomentNorShear) {
-  EXPECT_NEAR(CantileverModeCurvature(1.0), 0.0, 1e-9);
-  const double third = (CantileverModeCurvature(1.0) - CantileverModeCurvature(1.0 - 1e-5)) / 1e-5;
+  EXPECT_NEAR(BendingModeCurvature(1.0), 0.0, 1e-9);
+  const double third = (BendingModeCurvature(1.0) - BendingModeCurvature(1.0 - 1e-5)) / 1e-5;
   EXPECT_NEAR(third, 0.0, 1e-3);
 }
 
@@ -31,18 +31,18 @@ TEST(ModeShapes, CantileverSatisfiesTheBeamEquation) {
   // phi'''' = beta^4 phi: check with finite differences of the curvature.
   for (double x : {0.2, 0.5, 0.8}) {
     const double h = 1e-3;
-    const double fourth = (CantileverModeCurvature(x + h) - 2 * CantileverModeCurvature(x) +
-                           CantileverModeCurvature(x - h)) /
-                          (h * h);
-    EXPECT_NEAR(fourth, std::pow(kCantileverBeta1, 4) * CantileverModeShape(x), 1e-4) << x;
+    const double fourth =
+        (BendingModeCurvature(x + h) - 2 * BendingModeCurvature(x) + BendingModeCurvature(x - h)) /
+        (h * h);
+    EXPECT_NEAR(fourth, std::pow(kCantileverBeta1, 4) * BendingModeShape(x), 1e-4) << x;
   }
   // Slope and curvature are the derivatives of the shape.
   for (double x : {0.1, 0.4, 0.9}) {
-    EXPECT_NEAR(CantileverModeSlope(x), NumericDerivative(CantileverModeShape, x), 1e-8);
-    EXPECT_NEAR(CantileverModeCurvature(x), NumericDerivative(CantileverModeSlope, x), 1e-8);
+    EXPECT_NEAR(BendingModeSlope(x), NumericDerivative(BendingModeShape, x), 1e-8);
+    EXPECT_NEAR(BendingModeCurvature(x), NumericDerivative(BendingModeSlope, x), 1e-8);
   }
   // The known tip slope of the tip-normalised first mode.
-  EXPECT_NEAR(CantileverModeSlope(1.0), 1.37650, 1e-4);
+  EXPECT_NEAR(BendingModeSlope(1.0), 1.37650, 1e-4);
 }
 
 TEST(ModeShapes, TwistGrowsAlongTheBranch) {
@@ -51,7 +51,7 @@ TEST(ModeShapes, TwistGrowsAlongTheBranch) {
   EXPECT_GT(TwistModeShape(0.5), TwistModeShape(0.25));
   // Clamped outside [0, 1].
   EXPECT_EQ(TwistModeShape(2.0), 1.0);
-  EXPECT_EQ(CantileverModeShape(-1.0), 0.0);
+  EXPECT_EQ(BendingModeShape(-1.0), 0.0);
 }
 
 }  // namespace

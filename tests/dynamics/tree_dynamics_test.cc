@@ -74,7 +74,7 @@ TEST(TreeDynamics, MidSpanForceFollowsTheModeShape) {
   rope.arc_length = 1.0;
   sim.AttachRope(rope);
   sim.SettleStatic();
-  const double phi = CantileverModeShape(0.5);
+  const double phi = BendingModeShape(0.5);
   EXPECT_NEAR(sim.modal_state(0).q[0], phi * force / k, 1e-6 * force / k);
   const Eigen::Vector3d mid = sim.PointPosition(0, 1.0) - tree.branches[0].PointAt(1.0);
   EXPECT_NEAR(mid.norm(), phi * phi * force / k, 1e-6 * force / k);
@@ -202,7 +202,7 @@ TEST(TreeDynamics, ChildRidesItsParentsDeformedFrame) {
   const Eigen::Vector3d trunk_tip = Eigen::Vector3d(0, 0, 2) + 0.1 * u;
   EXPECT_LT((Tip(sim, 0) - trunk_tip).norm(), 1e-6);
   EXPECT_LT((Node(sim, 1, 0) - trunk_tip).norm(), 1e-6);
-  const double angle = CantileverModeSlope(1.0) * 0.1 / 2.0;
+  const double angle = BendingModeSlope(1.0) * 0.1 / 2.0;
   const Eigen::Matrix3d turn = Eigen::AngleAxisd(angle, -w).toRotationMatrix();
   const Eigen::Vector3d child_tip = trunk_tip + turn * Eigen::Vector3d(0, 1, 0);
   EXPECT_LT((Tip(sim, 1) - child_tip).norm(), 1e-6);

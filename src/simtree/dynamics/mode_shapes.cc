@@ -28,19 +28,19 @@ double TipValue() {
 
 }  // namespace
 
-double CantileverModeShape(double x) {
+double BendingModeShape(double x) {
   x = std::clamp(x, 0.0, 1.0);
   return RawShape(x) / TipValue();
 }
 
-double CantileverModeSlope(double x) {
+double BendingModeSlope(double x) {
   x = std::clamp(x, 0.0, 1.0);
   const double bx = kBeta * x;
   return kBeta * (std::sinh(bx) + std::sin(bx) - Sigma() * (std::cosh(bx) - std::cos(bx))) /
          TipValue();
 }
 
-double CantileverModeCurvature(double x) {
+double BendingModeCurvature(double x) {
   x = std::clamp(x, 0.0, 1.0);
   const double bx = kBeta * x;
   return kBeta * kBeta * (std::cosh(bx) + std::cos(bx) - Sigma() * (std::sinh(bx) + std::sin(bx))) /

@@ -12,12 +12,13 @@ inline constexpr double kCantileverBeta1 = 1.8751040687119611;
 
 // phi(x) = [cosh bx - cos bx - sigma (sinh bx - sin bx)] / (value at x = 1), with
 // sigma = (cosh b + cos b) / (sinh b + sin b). phi(0) = phi'(0) = 0, phi(1) = 1, and the free end
-// carries no moment or shear (phi''(1) = phi'''(1) = 0).
-double CantileverModeShape(double x);
+// carries no moment or shear (phi''(1) = phi'''(1) = 0). (identification/simulation_ready.h has
+// the same shape as CantileverModeShape for modal masses; these add its derivatives.)
+double BendingModeShape(double x);
 // d phi / dx (per unit of x: divide by L for the slope per metre).
-double CantileverModeSlope(double x);
+double BendingModeSlope(double x);
 // d^2 phi / dx^2 (curvature per unit x^2), for tests and for strain-like outputs.
-double CantileverModeCurvature(double x);
+double BendingModeCurvature(double x);
 
 // psi(x) = sin(pi x / 2): the twist angle along a clamped-free shaft, 0 at the base, 1 at the tip.
 double TwistModeShape(double x);

@@ -397,7 +397,7 @@ struct TreeDynamics::Impl {
         node.a_u[i] = static_cast<float>(r.x());
         node.h[i] = static_cast<float>(r.y());
         node.a_w[i] = static_cast<float>(r.z());
-        node.phi[i] = m.length > 0.0 ? static_cast<float>(CantileverModeShape(x)) : 0.f;
+        node.phi[i] = m.length > 0.0 ? static_cast<float>(BendingModeShape(x)) : 0.f;
         node.psi[i] = m.length > 0.0 ? static_cast<float>(TwistModeShape(x)) : 0.f;
         node.arc_fraction[i] = static_cast<float>(x);
         positions[i] = b.nodes[j].position.cast<float>();
@@ -407,8 +407,8 @@ struct TreeDynamics::Impl {
         const Model& pm = model[b.parent];
         const double lp = pm.length;
         const double xp = lp > 0.0 ? p.ArcLengths()[b.parent_node] / lp : 0.0;
-        k.attach_phi = lp > 0.0 ? CantileverModeShape(xp) : 0.0;
-        k.attach_slope = lp > 0.0 ? CantileverModeSlope(xp) / lp : 0.0;
+        k.attach_phi = lp > 0.0 ? BendingModeShape(xp) : 0.0;
+        k.attach_slope = lp > 0.0 ? BendingModeSlope(xp) / lp : 0.0;
         k.attach_psi = lp > 0.0 ? TwistModeShape(xp) : 0.0;
         const Eigen::Vector3d offset =
             pm.frame.transpose() * (p.nodes[b.parent_node].position - p.base().position);
@@ -713,8 +713,8 @@ struct TreeDynamics::Impl {
     PointOnBranch p;
     if (m.length > 0.0) {
       const double x = std::clamp(arc_length / m.length, 0.0, 1.0);
-      p.phi = CantileverModeShape(x);
-      p.slope = CantileverModeSlope(x) / m.length;
+      p.phi = BendingModeShape(x);
+      p.slope = BendingModeSlope(x) / m.length;
       p.psi = TwistModeShape(x);
     }
     p.rest_offset = m.frame.transpose() * (tree.branches[id].PointAt(arc_length) - m.rest_base);
@@ -953,7 +953,7 @@ struct TreeDynamics::Impl {
     const Model& m = model[id];
     const State& st = state[id];
     const double x = node.arc_fraction[k.first_node + j];
-    const double slope = m.length > 0.0 ? CantileverModeSlope(x) / m.length : 0.0;
+    const double slope = m.length > 0.0 ? BendingModeSlope(x) / m.length : 0.0;
     const double psi = node.psi[k.first_node + j];
     return st.frame * RotationFromVector(LocalRotation(slope, psi, st.modal.q)) *
            m.frame.transpose();
