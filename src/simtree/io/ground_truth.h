@@ -1,6 +1,7 @@
 #pragma once
-// The gt/ folder of a synthetic capture (CONTRACTS.md §1): what `synth` knows and the pipeline
-// must find out. Written only by synth; read by eval, benchmarks and tests, never by a stage.
+// The gt/ folder of a synthetic capture (docs/formats.md, "Capture folder"): what `synth` knows and
+// the pipeline must find out. Written only by synth; read by eval, benchmarks and tests, never by a
+// stage.
 //
 //   gt/tree.json            the true rest tree with its markers (core/tree_json.h)
 //   gt/scan_poses.json      world_from_camera of every scan view
