@@ -1,4 +1,4 @@
-#include "simtree/eval/tracker_error.h"
+#include "simtree/tracking/tracker_error.h"
 
 #include <cmath>
 
@@ -30,6 +30,7 @@ TEST(TrackerError, ErrorHasTheSetSizeAndShape) {
   TrackerErrorOptions options;
   options.gap_start_rate = 0;
   options.jump_rate = 0;
+  options.correlation = 0.6;
   const Trajectories tracked = SimulateTrackerError(truth, options);
   ASSERT_EQ(tracked.frame_count(), truth.frame_count());
   ASSERT_EQ(tracked.marker_count(), 2);

@@ -1,4 +1,4 @@
-#include "simtree/eval/tracker_error.h"
+#include "simtree/tracking/tracker_error.h"
 
 #include <cmath>
 #include <limits>
