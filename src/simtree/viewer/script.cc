@@ -65,11 +65,12 @@ ScriptAction ParseAction(const TextLine& line, const std::string& source) {
   LineParser p(line, source);
   const auto verb = Verbs().find(line.words[0]);
   if (verb == Verbs().end()) {
-    throw InputError(source, fmt::format("line {}", line.number),
-                     fmt::format("unknown action \"{}\" (expected pick, pick-branch, drag, "
-                                 "release, hover, wait, screenshot, key, play, pause, step, reset, "
-                                 "wind, leaves, material, orbit, zoom or quit)",
-                                 line.words[0]));
+    throw InputError(
+        source, fmt::format("line {}", line.number),
+        fmt::format("unknown action \"{}\" (expected pick, pick-branch, drag, drag-by, "
+                    "release, hover, wait, screenshot, key, play, pause, step, reset, "
+                    "wind, leaves, material, orbit, zoom or quit)",
+                    line.words[0]));
   }
   ScriptAction a;
   a.verb = verb->second;
@@ -94,7 +95,8 @@ ScriptAction ParseAction(const TextLine& line, const std::string& source) {
       break;
     }
     case ScriptVerb::kDrag:
-      p.Arity(2, 3, "drag X Y [FRAMES]");
+    case ScriptVerb::kDragBy:
+      p.Arity(2, 3, a.verb == ScriptVerb::kDrag ? "drag X Y [FRAMES]" : "drag-by DX DY [FRAMES]");
       a.numbers = {p.Number(1, "X"), p.Number(2, "Y"),
                    p.size() > 3 ? static_cast<double>(p.Count(3, "FRAMES", 1)) : 1.0};
       break;

@@ -5,6 +5,7 @@
 //   pick X Y              press the left button at window pixel (X, Y): grabs the branch there
 //   pick-branch B[@S]     press on branch B's point S metres from its base (its tip without @S)
 //   drag X Y [FRAMES]     move, button held, to (X, Y) over FRAMES frames (default 1): pulls
+//   drag-by DX DY [FRAMES]  the same, by (DX, DY) pixels from where the mouse is
 //   release               let go of the button: the rope is released
 //   hover X Y             move the mouse there with no button (prints what is under it)
 //   wait FRAMES           draw that many frames

@@ -419,8 +419,9 @@ void Viewer::Impl::DoAction(const ScriptAction& a) {
       break;
     }
     case ScriptVerb::kDrag:
-      drag_to_x = a.numbers[0];
-      drag_to_y = a.numbers[1];
+    case ScriptVerb::kDragBy:
+      drag_to_x = a.numbers[0] + (a.verb == ScriptVerb::kDragBy ? mouse_x : 0.0);
+      drag_to_y = a.numbers[1] + (a.verb == ScriptVerb::kDragBy ? mouse_y : 0.0);
       drag_frames_left = static_cast<int>(a.numbers[2]);
       break;
     case ScriptVerb::kRelease:
@@ -514,7 +515,7 @@ void Viewer::Impl::RunScript() {
       --script_wait;
       return;
     }
-    if (a.verb == ScriptVerb::kDrag) {
+    if (a.verb == ScriptVerb::kDrag || a.verb == ScriptVerb::kDragBy) {
       RunScript();
       return;
     }
