@@ -18,7 +18,7 @@ TEST(Camera, PixelRayAndProjectAgree) {
   orbit.distance_m = 4.0;
   const CameraView view = orbit.View(800, 600);
   EXPECT_TRUE(view.EyePosition().isApprox(orbit.Eye(), 1e-9));
-  for (const Eigen::Vector2d pixel :
+  for (const Eigen::Vector2d& pixel :
        {Eigen::Vector2d(400, 300), Eigen::Vector2d(10.5, 590), Eigen::Vector2d(777, 20)}) {
     const Ray ray = view.PixelRay(pixel.x(), pixel.y());
     const auto back = view.Project(ray.origin + 3.0 * ray.direction);
@@ -46,7 +46,7 @@ TEST(Camera, PinholeViewProjectsLikeTheIntrinsics) {
       Eigen::AngleAxisd(0.3, Eigen::Vector3d(0.2, 1, 0.1).normalized()).toRotationMatrix();
   world_from_camera.translation() = Eigen::Vector3d(0.1, -2.5, 1.2);
   const CameraView view = PinholeView(k, world_from_camera);
-  for (const Eigen::Vector3d p_cam :
+  for (const Eigen::Vector3d& p_cam :
        {Eigen::Vector3d(0.1, -0.2, 2.5), Eigen::Vector3d(-0.7, 0.4, 3.0)}) {
     const Eigen::Vector2d expected = k.Project(p_cam);
     const auto got = view.Project(world_from_camera * p_cam);

@@ -18,9 +18,10 @@ using ::testing::HasSubstr;
 
 Trajectories TwoFrames() {
   Trajectories t;
-  t.AddFrame(0, 0.0, {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 1, 1)}, {true, true});
+  t.tracks.resize(2);
   t.tracks[0].marker = 4;
   t.tracks[1].marker = 7;
+  t.AddFrame(0, 0.0, {Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(1, 1, 1)}, {true, true});
   t.AddFrame(1, 0.5, {Eigen::Vector3d(0, 0, 2), Eigen::Vector3d(0, 0, 0)}, {true, false});
   return t;
 }

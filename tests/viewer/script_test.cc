@@ -43,7 +43,7 @@ TEST(Script, ParsesEveryAction) {
       "zoom 0.8\n"
       "quit\n",
       "actions.txt");
-  ASSERT_EQ(actions.size(), 23u);
+  ASSERT_EQ(actions.size(), 22u);
   EXPECT_EQ(actions[0].verb, ScriptVerb::kPick);
   EXPECT_EQ(actions[0].line, 2);
   EXPECT_EQ(actions[0].numbers, (std::vector<double>{640, 300}));
@@ -61,7 +61,7 @@ TEST(Script, ParsesEveryAction) {
   EXPECT_EQ(actions[18].verb, ScriptVerb::kMaterial);
   EXPECT_EQ(actions[18].text, "level damping");
   EXPECT_EQ(actions[18].branch, 2);
-  EXPECT_EQ(actions[22].verb, ScriptVerb::kQuit);
+  EXPECT_EQ(actions[21].verb, ScriptVerb::kQuit);
 }
 
 TEST(Script, MistakesNameTheLine) {

@@ -12,24 +12,17 @@ namespace simtree {
 namespace {
 
 const std::map<std::string, ScriptVerb>& Verbs() {
-  static const std::map<std::string, ScriptVerb> verbs = {{"pick", ScriptVerb::kPick},
-                                                          {"pick-branch", ScriptVerb::kPickBranch},
-                                                          {"drag", ScriptVerb::kDrag},
-                                                          {"release", ScriptVerb::kRelease},
-                                                          {"hover", ScriptVerb::kHover},
-                                                          {"wait", ScriptVerb::kWait},
-                                                          {"screenshot", ScriptVerb::kScreenshot},
-                                                          {"key", ScriptVerb::kKey},
-                                                          {"play", ScriptVerb::kPlay},
-                                                          {"pause", ScriptVerb::kPause},
-                                                          {"step", ScriptVerb::kStep},
-                                                          {"reset", ScriptVerb::kReset},
-                                                          {"wind", ScriptVerb::kWind},
-                                                          {"leaves", ScriptVerb::kLeaves},
-                                                          {"material", ScriptVerb::kMaterial},
-                                                          {"orbit", ScriptVerb::kOrbit},
-                                                          {"zoom", ScriptVerb::kZoom},
-                                                          {"quit", ScriptVerb::kQuit}};
+  static const std::map<std::string, ScriptVerb> verbs = {
+      {"pick", ScriptVerb::kPick},       {"pick-branch", ScriptVerb::kPickBranch},
+      {"drag", ScriptVerb::kDrag},       {"drag-by", ScriptVerb::kDragBy},
+      {"release", ScriptVerb::kRelease}, {"hover", ScriptVerb::kHover},
+      {"wait", ScriptVerb::kWait},       {"screenshot", ScriptVerb::kScreenshot},
+      {"key", ScriptVerb::kKey},         {"play", ScriptVerb::kPlay},
+      {"pause", ScriptVerb::kPause},     {"step", ScriptVerb::kStep},
+      {"reset", ScriptVerb::kReset},     {"wind", ScriptVerb::kWind},
+      {"leaves", ScriptVerb::kLeaves},   {"material", ScriptVerb::kMaterial},
+      {"orbit", ScriptVerb::kOrbit},     {"zoom", ScriptVerb::kZoom},
+      {"quit", ScriptVerb::kQuit}};
   return verbs;
 }
 

@@ -28,6 +28,7 @@ enum class ScriptVerb {
   kPick,
   kPickBranch,
   kDrag,
+  kDragBy,
   kRelease,
   kHover,
   kWait,
