@@ -50,9 +50,13 @@ test::CliResult RunView(const std::string& args) {
   // xvfb-run is the CLI's caller here: the test needs no display of its own.
   const std::string command = std::string("xvfb-run -a -s \"-screen 0 1024x700x24\" \"") +
                               SIMTREE_CLI_PATH + "\" " + UnderXvfb(args);
-  const std::filesystem::path log = test::TempDir() / "view.log";
+  const std::filesystem::path log =
+      std::filesystem::path(SIMTREE_TEST_TMP_DIR) / ("view-" + std::to_string(getpid()) + ".log");
+  std::filesystem::create_directories(log.parent_path());
   const int status = std::system((command + " > \"" + log.string() + "\" 2>&1").c_str());
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, test::ReadText(log)};
+  test::CliResult result{WIFEXITED(status) ? WEXITSTATUS(status) : -1, test::ReadText(log)};
+  std::filesystem::remove(log);
+  return result;
 }
 
 TEST(ViewCli, ScriptedPullAndReleaseMoveTheTree) {
