@@ -177,8 +177,13 @@ TEST(FemResponse, ModalIntegrationFollowsTheDirectOne) {
   std::vector<Eigen::VectorXd> direct, modal;
   const PullResult a = IntegratePull(
       model, pull, frames, {}, [&](int, double, const FemState& s) { direct.push_back(s.x); });
-  const PullResult b = IntegratePull(model, modes, pull, frames, {},
-                                     [&](int, double, const FemState& s) { modal.push_back(s.x); });
+  // Without rates the samples carry x only, but the release state keeps its velocity.
+  const PullResult b = IntegratePull(model, modes, pull, frames, {.sample_rates = false},
+                                     [&](int, double, const FemState& s) {
+                                       EXPECT_EQ(s.v.size(), 0);
+                                       modal.push_back(s.x);
+                                     });
+  ASSERT_EQ(b.release_state.v.size(), model.dof_count());
   ASSERT_EQ(direct.size(), frames.size());
   ASSERT_EQ(modal.size(), frames.size());
   double largest = 0.0, worst = 0.0;
@@ -188,6 +193,9 @@ TEST(FemResponse, ModalIntegrationFollowsTheDirectOne) {
   }
   EXPECT_LT(worst, 1e-2 * largest);
   EXPECT_LT((a.release_state.x - b.release_state.x).norm(), 1e-3 * a.release_state.x.norm());
+  // Velocities on the scale of omega_1 x.
+  EXPECT_LT((a.release_state.v - b.release_state.v).norm(),
+            1e-2 * modes.omega[0] * a.release_state.x.norm());
 }
 
 TEST(FemResponse, SamplesBetweenStepsAndOnJumps) {

@@ -111,7 +111,7 @@ ModalBasis ComputeModes(const FemModel& model, const ModesOptions& options) {
     const bool covered = pairs.values[pairs.values.size() - 1] >= cover_omega_sq;
     const int cap = std::min(options.max_count, limit);
     if (covered || count >= cap) break;
-    count = std::min(2 * count, cap);
+    count = std::min(count + std::max(1, count / 2), cap);
   }
   // The order Spectra returns is ascending already; sort anyway so the dense and sparse paths
   // agree whatever the solvers do.

@@ -59,6 +59,13 @@ class NewmarkSystem {
                                   const Eigen::VectorXd& a, double s_next) = 0;
   virtual FemState Sample(double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
                           const Eigen::VectorXd& a, double s) const = 0;
+  // Hands sample `index` to `on_sample`, at once or (modal) with a batch; Flush() hands out what
+  // is held back. Samples always arrive in order.
+  virtual void Emit(int index, double t, const Eigen::VectorXd& x, const Eigen::VectorXd& v,
+                    const Eigen::VectorXd& a, double s, const FemSampleCallback& on_sample) {
+    on_sample(index, t, Sample(t, x, v, a, s));
+  }
+  virtual void Flush(const FemSampleCallback&) {}
 };
 
 class DirectSystem final : public NewmarkSystem {
@@ -122,7 +129,7 @@ class ModalSystem final : public NewmarkSystem {
  public:
   ModalSystem(const FemModel& model, const ModalBasis& modes, const FemLoad& load,
               bool sample_rates)
-      : model_(model), modes_(modes), sample_rates_(sample_rates) {
+      : modes_(modes), sample_rates_(sample_rates) {
     omega_sq_ = modes.omega.array().square();
     damping_ = 2.0 * modes.damping_ratio.array() * modes.omega.array();
     if (load.pattern.size()) {
@@ -159,29 +166,70 @@ class ModalSystem final : public NewmarkSystem {
                   const Eigen::VectorXd& qdd, double s) const override {
     FemState state;
     state.time_s = t;
-    if (sample_rates_) {
-      // One pass over the shapes for all three.
-      Eigen::MatrixXd coordinates(q.size(), 3);
-      coordinates << q, qd, qdd;
-      const Eigen::MatrixXd physical = modes_.shapes * coordinates;
-      state.x = physical.col(0);
-      state.v = physical.col(1);
-      state.a = physical.col(2);
-    } else {
-      state.x = modes_.shapes * q;
-    }
+    state.x = modes_.shapes * q;
     if (residual_.size() && s != 0) state.x += s * residual_;
+    state.v = modes_.shapes * qd;
+    state.a = modes_.shapes * qdd;
     return state;
   }
 
+  // Physical states are the shapes times modal coordinates: one product for a batch of samples
+  // reads the (large) shape matrix once instead of once per sample.
+  void Emit(int index, double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+            const Eigen::VectorXd& qdd, double s, const FemSampleCallback& on_sample) override {
+    if (batch_.cols() == 0) batch_.resize(modes_.count(), 3 * kBatch);
+    const bool rates = sample_rates_ || index == rates_index_;
+    Pending p{index, t, s, used_columns_, rates};
+    batch_.col(used_columns_++) = q;
+    if (rates) {
+      batch_.col(used_columns_++) = qd;
+      batch_.col(used_columns_++) = qdd;
+    }
+    pending_.push_back(p);
+    if (static_cast<int>(pending_.size()) == kBatch) Flush(on_sample);
+  }
+
+  void Flush(const FemSampleCallback& on_sample) override {
+    if (pending_.empty()) return;
+    const Eigen::MatrixXd physical = modes_.shapes * batch_.leftCols(used_columns_);
+    for (const Pending& p : pending_) {
+      FemState state;
+      state.time_s = p.time_s;
+      state.x = physical.col(p.column);
+      if (residual_.size() && p.scale != 0) state.x += p.scale * residual_;
+      if (p.rates) {
+        state.v = physical.col(p.column + 1);
+        state.a = physical.col(p.column + 2);
+      }
+      on_sample(p.index, state.time_s, state);
+    }
+    pending_.clear();
+    used_columns_ = 0;
+  }
+
+  // This sample gets v and a even when sample_rates is off (the pull's release state).
+  void SetRatesIndex(int index) { rates_index_ = index; }
+
  private:
-  const FemModel& model_;
   const ModalBasis& modes_;
   bool sample_rates_;
+  int rates_index_ = -1;
   Eigen::ArrayXd omega_sq_, damping_, effective_;
   Eigen::VectorXd generalized_;  // Phi^T p
   Eigen::VectorXd residual_;     // static response of the modes left out, per unit scale
   std::optional<NewmarkCoefficients> coefficients_;
+  // Samples waiting for their batch product.
+  static constexpr int kBatch = 32;
+  struct Pending {
+    int index;
+    double time_s;
+    double scale;
+    int column;  // of q in batch_ (qd, qdd follow when `rates`)
+    bool rates;
+  };
+  std::vector<Pending> pending_;
+  Eigen::MatrixXd batch_;  // modal coordinates of the pending samples, a column each
+  int used_columns_ = 0;
 };
 
 void CheckSampleTimes(std::span<const double> times, double start) {
@@ -241,8 +289,7 @@ NewmarkResult Drive(NewmarkSystem& system, double t0, Eigen::VectorXd x, Eigen::
   size_t next = 0;
   Eigen::VectorXd a = system.Acceleration(x, v, load.ScaleAt(t0));
   while (next < samples.size() && samples[next] <= t0 + kSameTime) {
-    on_sample(static_cast<int>(next), samples[next],
-              system.Sample(samples[next], x, v, a, load.ScaleAt(t0)));
+    system.Emit(static_cast<int>(next), samples[next], x, v, a, load.ScaleAt(t0), on_sample);
     ++next;
   }
   double t = t0;
@@ -271,13 +318,12 @@ NewmarkResult Drive(NewmarkSystem& system, double t0, Eigen::VectorXd x, Eigen::
       while (next < samples.size() && samples[next] <= t_next + kSameTime) {
         const double ts = samples[next];
         if (std::abs(ts - t_next) <= kSameTime) {
-          on_sample(static_cast<int>(next), ts, system.Sample(ts, x_next, v_next, a_next, s_next));
+          system.Emit(static_cast<int>(next), ts, x_next, v_next, a_next, s_next, on_sample);
         } else {
           const double tau = ts - t;
           const Eigen::VectorXd mean_a = 0.5 * (a + a_next);
-          on_sample(static_cast<int>(next), ts,
-                    system.Sample(ts, x + tau * v + 0.5 * tau * tau * mean_a, v + tau * mean_a,
-                                  a + (tau / dt) * (a_next - a), load.ScaleAt(ts)));
+          system.Emit(static_cast<int>(next), ts, x + tau * v + 0.5 * tau * tau * mean_a,
+                      v + tau * mean_a, a + (tau / dt) * (a_next - a), load.ScaleAt(ts), on_sample);
         }
         ++next;
       }
@@ -289,6 +335,7 @@ NewmarkResult Drive(NewmarkSystem& system, double t0, Eigen::VectorXd x, Eigen::
       if (progress) progress->Advance();
     }
   }
+  system.Flush(on_sample);
   result.final_state = system.Sample(t, x, v, a, load.ScaleAt(t));
   return result;
 }
@@ -338,17 +385,30 @@ NewmarkResult IntegrateNewmark(const FemModel& model, const FemState& start, con
                options, on_sample, "fem newmark (direct)");
 }
 
-NewmarkResult IntegrateNewmark(const FemModel& model, const ModalBasis& modes,
-                               const FemState& start, const FemLoad& load,
-                               std::span<const double> sample_times, const NewmarkOptions& options,
-                               const FemSampleCallback& on_sample) {
+namespace {
+
+// The modal integration, with one sample (`rates_index`, -1: none) that always gets v and a.
+NewmarkResult IntegrateModal(const FemModel& model, const ModalBasis& modes, const FemState& start,
+                             const FemLoad& load, std::span<const double> sample_times,
+                             const NewmarkOptions& options, const FemSampleCallback& on_sample,
+                             int rates_index) {
   CheckStart(model, start, load);
   CheckModes(model, modes);
   ModalSystem system(model, modes, load, options.sample_rates);
+  system.SetRatesIndex(rates_index);
   const int n = model.dof_count();
   return Drive(system, start.time_s, modes.Project(model.mass(), OrZero(start.x, n)),
                modes.Project(model.mass(), OrZero(start.v, n)), load, sample_times, options,
                on_sample, "fem newmark (modal)");
+}
+
+}  // namespace
+
+NewmarkResult IntegrateNewmark(const FemModel& model, const ModalBasis& modes,
+                               const FemState& start, const FemLoad& load,
+                               std::span<const double> sample_times, const NewmarkOptions& options,
+                               const FemSampleCallback& on_sample) {
+  return IntegrateModal(model, modes, start, load, sample_times, options, on_sample, -1);
 }
 
 FemLoad PullFemLoad(const FemModel& model, const PullLoad& pull) {
@@ -386,13 +446,14 @@ PullResult RunPull(const PullLoad& pull, std::span<const double> sample_times,
   const int release_index = static_cast<int>(at - times.begin());
   times.insert(at, pull.release_s);
   PullResult result;
-  result.run = integrate(std::span<const double>(times), [&](int i, double t, const FemState& s) {
-    if (i == release_index) {
-      result.release_state = s;
-      return;
-    }
-    on_sample(i < release_index ? i : i - 1, t, s);
-  });
+  result.run = integrate(std::span<const double>(times), release_index,
+                         [&](int i, double t, const FemState& s) {
+                           if (i == release_index) {
+                             result.release_state = s;
+                             return;
+                           }
+                           on_sample(i < release_index ? i : i - 1, t, s);
+                         });
   return result;
 }
 
@@ -402,7 +463,7 @@ PullResult IntegratePull(const FemModel& model, const PullLoad& pull,
                          std::span<const double> sample_times, const NewmarkOptions& options,
                          const FemSampleCallback& on_sample) {
   const FemLoad load = PullFemLoad(model, pull);
-  return RunPull(pull, sample_times, on_sample, [&](std::span<const double> t, auto&& cb) {
+  return RunPull(pull, sample_times, on_sample, [&](std::span<const double> t, int, auto&& cb) {
     return IntegrateNewmark(model, RestState(model), load, t, options, cb);
   });
 }
@@ -411,12 +472,11 @@ PullResult IntegratePull(const FemModel& model, const ModalBasis& modes, const P
                          std::span<const double> sample_times, const NewmarkOptions& options,
                          const FemSampleCallback& on_sample) {
   const FemLoad load = PullFemLoad(model, pull);
-  // The release state feeds the modal truth, which needs velocities.
-  NewmarkOptions with_rates = options;
-  with_rates.sample_rates = true;
-  return RunPull(pull, sample_times, on_sample, [&](std::span<const double> t, auto&& cb) {
-    return IntegrateNewmark(model, modes, RestState(model), load, t, with_rates, cb);
-  });
+  // The release state feeds the modal truth, which needs velocities, whatever the options say.
+  return RunPull(
+      pull, sample_times, on_sample, [&](std::span<const double> t, int release_index, auto&& cb) {
+        return IntegrateModal(model, modes, RestState(model), load, t, options, cb, release_index);
+      });
 }
 
 NewmarkResult IntegrateFree(const FemModel& model, const ModalBasis& modes, const FemState& start,
