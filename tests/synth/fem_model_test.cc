@@ -19,16 +19,6 @@ using ::testing::HasSubstr;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-template <typename F>
-std::string ErrorOf(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
-
 // Tip deflection P L^3 / 3EI, in two planes and along an axis that is not a world axis.
 TEST(FemModel, CantileverTipDeflectionMatchesClosedForm) {
   const WoodProperties wood = test::TestWood();
@@ -166,39 +156,58 @@ TEST(FemModel, PoseMovesTreeNodesAndKeepsJointsTogether) {
 
 TEST(FemModel, BadInputIsAnInputError) {
   const WoodProperties wood = test::TestWood();
-  EXPECT_THAT(ErrorOf([&] { FemModel(Tree{}, wood); }), HasSubstr("at least one branch"));
+  EXPECT_THAT(test::InputErrorOf([&] { FemModel(Tree{}, wood); }),
+              HasSubstr("at least one branch"));
   Tree tree = test::SmallTree();
   tree.branches[2].nodes[1].radius = 0.0;
-  EXPECT_THAT(ErrorOf([&] { FemModel(tree, wood); }), HasSubstr("branches[2].nodes[1].radius"));
+  EXPECT_THAT(test::InputErrorOf([&] { FemModel(tree, wood); }),
+              HasSubstr("branches[2].nodes[1].radius"));
   tree = test::SmallTree();
   tree.branches[1].nodes[2].position.x() = kNaN;
-  EXPECT_THAT(ErrorOf([&] { FemModel(tree, wood); }), HasSubstr("position"));
+  EXPECT_THAT(test::InputErrorOf([&] { FemModel(tree, wood); }), HasSubstr("position"));
   WoodProperties bad = wood;
   bad.youngs_modulus_pa = kNaN;
-  EXPECT_THAT(ErrorOf([&] { FemModel(test::SmallTree(), bad); }), HasSubstr("youngs_modulus_pa"));
+  EXPECT_THAT(test::InputErrorOf([&] { FemModel(test::SmallTree(), bad); }),
+              HasSubstr("youngs_modulus_pa"));
   bad = wood;
   bad.rayleigh_beta = -1e-3;
-  EXPECT_THAT(ErrorOf([&] { FemModel(test::SmallTree(), bad); }), HasSubstr("rayleigh_beta"));
-  EXPECT_THAT(ErrorOf([&] { FemModel(test::SmallTree(), wood, {.max_element_length_m = 0}); }),
-              HasSubstr("max_element_length_m"));
+  EXPECT_THAT(test::InputErrorOf([&] { FemModel(test::SmallTree(), bad); }),
+              HasSubstr("rayleigh_beta"));
+  EXPECT_THAT(
+      test::InputErrorOf([&] { FemModel(test::SmallTree(), wood, {.max_element_length_m = 0}); }),
+      HasSubstr("max_element_length_m"));
   // A branch of coincident nodes only has nothing to bend.
   Tree point = test::Cantilever({0, 0, 0}, {0, 0, 1}, 0.0, 3, [](double) { return 0.01; });
-  EXPECT_THAT(ErrorOf([&] { FemModel(point, wood); }), HasSubstr("non-zero length"));
+  EXPECT_THAT(test::InputErrorOf([&] { FemModel(point, wood); }), HasSubstr("non-zero length"));
 
   const FemModel model(test::SmallTree(), wood);
-  EXPECT_THAT(ErrorOf([&] {
+  EXPECT_THAT(test::InputErrorOf([&] {
                 model.PointLoad(7, 0.1, {1, 0, 0});
               }),
               HasSubstr("branch: expected a branch id in [0, 3], got 7"));
-  EXPECT_THAT(ErrorOf([&] { model.PointLoad(-1, 0.1, {1, 0, 0}); }), HasSubstr("branch"));
-  EXPECT_THAT(ErrorOf([&] { model.PointLoad(1, 5.0, {1, 0, 0}); }), HasSubstr("arc_length"));
-  EXPECT_THAT(ErrorOf([&] { model.PointLoad(1, kNaN, {1, 0, 0}); }), HasSubstr("arc_length"));
-  EXPECT_THAT(ErrorOf([&] { model.PointLoad(1, 0.1, {kNaN, 0, 0}); }), HasSubstr("finite"));
-  EXPECT_THAT(ErrorOf([&] { model.Pose(Eigen::VectorXd::Zero(5)); }), HasSubstr("expected"));
-  EXPECT_THAT(ErrorOf([&] { SolveStatic(model, Eigen::VectorXd::Zero(3)); }), HasSubstr("force"));
+  EXPECT_THAT(test::InputErrorOf([&] {
+                model.PointLoad(-1, 0.1, {1, 0, 0});
+              }),
+              HasSubstr("branch"));
+  EXPECT_THAT(test::InputErrorOf([&] {
+                model.PointLoad(1, 5.0, {1, 0, 0});
+              }),
+              HasSubstr("arc_length"));
+  EXPECT_THAT(test::InputErrorOf([&] {
+                model.PointLoad(1, kNaN, {1, 0, 0});
+              }),
+              HasSubstr("arc_length"));
+  EXPECT_THAT(test::InputErrorOf([&] {
+                model.PointLoad(1, 0.1, {kNaN, 0, 0});
+              }),
+              HasSubstr("finite"));
+  EXPECT_THAT(test::InputErrorOf([&] { model.Pose(Eigen::VectorXd::Zero(5)); }),
+              HasSubstr("expected"));
+  EXPECT_THAT(test::InputErrorOf([&] { SolveStatic(model, Eigen::VectorXd::Zero(3)); }),
+              HasSubstr("force"));
   Eigen::VectorXd f = Eigen::VectorXd::Zero(model.dof_count());
   f[4] = kNaN;
-  EXPECT_THAT(ErrorOf([&] { SolveStatic(model, f); }), HasSubstr("NaN"));
+  EXPECT_THAT(test::InputErrorOf([&] { SolveStatic(model, f); }), HasSubstr("NaN"));
 }
 
 TEST(FemModel, MergesCoincidentNodes) {

@@ -3,7 +3,9 @@
 
 #include <cmath>
 #include <functional>
+#include <string>
 
+#include "simtree/core/error.h"
 #include "simtree/core/frames.h"
 #include "simtree/core/tree.h"
 #include "simtree/core/units.h"
@@ -75,5 +77,16 @@ inline double CantileverFrequencyHz(double beta_l, const WoodProperties& w, doub
 }
 inline constexpr double kBetaL1 = 1.8751040687;
 inline constexpr double kBetaL2 = 4.6940911330;
+
+// The message of the InputError `f` throws, or "" when it throws none.
+template <typename F>
+std::string InputErrorOf(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
 
 }  // namespace simtree::test

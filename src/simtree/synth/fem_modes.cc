@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <numeric>
 
 #include <Spectra/MatOp/SparseSymMatProd.h>
@@ -11,11 +12,15 @@
 #include <Eigen/SparseCholesky>
 
 #include "simtree/core/error.h"
+#include "simtree/core/progress.h"
 
 namespace simtree {
 namespace {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
+
+// Models above this many degrees of freedom show progress.
+constexpr int kProgressDofs = 20000;
 
 // y = (K - sigma M)^-1 x through a sparse LDL^T factorisation: what Spectra's shift-invert mode
 // asks of its operator. (Spectra's own SymShiftInvert uses a sparse LU; K - sigma M is symmetric
@@ -105,9 +110,14 @@ ModalBasis ComputeModes(const FemModel& model, const ModesOptions& options) {
   // Spectra needs count < n; the dense solver gives all n.
   const int limit = dense ? n : n - 1;
   const double cover_omega_sq = std::pow(kTwoPi * options.cover_frequency_hz, 2);
+  // Tens of thousands of degrees of freedom take seconds: say so (Spectra reports nothing while
+  // it iterates, so this is one line per solve).
+  std::unique_ptr<Progress> progress;
+  if (n > kProgressDofs) progress = std::make_unique<Progress>("fem modes", 0, "modes");
   EigenPairs pairs;
   for (int count = std::min(options.count, limit);;) {
     pairs = dense ? DenseLowest(model, count) : SparseLowest(model, count, options);
+    if (progress) progress->Advance(count);
     const bool covered = pairs.values[pairs.values.size() - 1] >= cover_omega_sq;
     const int cap = std::min(options.max_count, limit);
     if (covered || count >= cap) break;
