@@ -54,7 +54,7 @@ TEST_P(Markers, EveryLevelIsTapedAndLinkedDownToTheTrunk) {
       const auto arcs = tree.branches[m.branch].ArcLengths();
       const size_t node = std::find(arcs.begin(), arcs.end(), m.arc_length) - arcs.begin();
       ASSERT_LT(node, arcs.size()) << "markers sit on nodes";
-      EXPECT_GE(tree.branches[m.branch].nodes[node].radius, 0.004);
+      EXPECT_GE(tree.branches[m.branch].nodes[node].radius, 0.003);
       EXPECT_GE(m.arc_length, 0.05);
       EXPECT_GE(arcs.back() - m.arc_length, 0.05);
       for (const int c : children[m.branch]) {

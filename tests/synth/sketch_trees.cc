@@ -2,8 +2,10 @@
 // a line of statistics per tree, to look at the species while tuning them.
 //
 //   build/bin/synth_sketch_trees OUT_DIR [species ...] [--seeds 1,2,3] [--bark] [--markers]
+//                                [--json]
 //
-// Species default to every preset; a species may also be a species JSON file.
+// Species default to every preset; a species may also be a species JSON file. --json also writes
+// each species' whole JSON (a starting point for a custom species).
 
 #include <chrono>
 #include <cstdio>
@@ -35,7 +37,8 @@ std::vector<uint64_t> ParseSeeds(const std::string& list) {
 int main(int argc, char** argv) {
   using namespace simtree;
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s OUT_DIR [species ...] [--seeds 1,2] [--bark] [--markers]\n",
+    std::fprintf(stderr,
+                 "usage: %s OUT_DIR [species ...] [--seeds 1,2] [--bark] [--markers] [--json]\n",
                  argv[0]);
     return 2;
   }
@@ -44,6 +47,7 @@ int main(int argc, char** argv) {
   std::vector<uint64_t> seeds = {1};
   TreeSketchOptions sketch;
   bool markers = false;
+  bool json = false;
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--seeds" && i + 1 < argc) {
@@ -52,6 +56,8 @@ int main(int argc, char** argv) {
       sketch.colour_by_level = false;
     } else if (arg == "--markers") {
       markers = true;
+    } else if (arg == "--json") {
+      json = true;
     } else {
       species.push_back(arg);
     }
@@ -62,6 +68,7 @@ int main(int argc, char** argv) {
     for (const std::string& name : species) {
       const SpeciesParams params =
           std::filesystem::exists(name) ? ReadSpeciesJson(name) : SpeciesPreset(name);
+      if (json) WriteSpeciesJson(params, out / (params.name + ".json"));
       for (const uint64_t seed : seeds) {
         const auto start = std::chrono::steady_clock::now();
         TreeGenerationResult result = GrowTree(params, seed);

@@ -38,8 +38,9 @@ TEST(Species, PresetsAreValidAndNamed) {
     // The presets are small trees a camera 1.5-3 m away sees whole: 2.5-4.5 m.
     EXPECT_GE(p.height_m * (1 - p.height_spread), 2.5) << name;
     EXPECT_LE(p.height_m * (1 + p.height_spread), 4.5) << name;
+    // Between da Vinci's 2 and Murray's 3, where measured trees fall.
     EXPECT_GE(p.pipe_exponent, 2.0);
-    EXPECT_LE(p.pipe_exponent, 2.5);
+    EXPECT_LE(p.pipe_exponent, 3.0);
   }
   EXPECT_EQ(SpeciesPreset("acer_palmatum").phyllotaxis, Phyllotaxis::kOpposite);
   EXPECT_EQ(SpeciesPreset("acer_rubrum").phyllotaxis, Phyllotaxis::kOpposite);

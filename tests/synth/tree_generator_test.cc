@@ -91,10 +91,11 @@ TEST_P(EveryPreset, IsAValidTreeOfTheRightSize) {
   EXPECT_GE(tree().size(), 150);
   EXPECT_LE(tree().size(), 1500);
   EXPECT_LE(tree().NodeCount(), 10000);
-  // The reconstruction is scored on branches of radius >= 1 cm: there must be some.
+  // The reconstruction is scored on branches of radius >= 1 cm: the trunk and the main scaffold
+  // (slender trees, so that their first frequency is the paper's: only a handful).
   int thick = 0;
   for (const Branch& b : tree().branches) thick += b.base().radius >= 0.01 ? 1 : 0;
-  EXPECT_GE(thick, 10);
+  EXPECT_GE(thick, 5);
   // Not much scaling was needed to reach the height (node spacing stays what the species says).
   EXPECT_GT(result_.scale, 0.8);
   EXPECT_LT(result_.scale, 1.2);

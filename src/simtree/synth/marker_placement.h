@@ -35,7 +35,9 @@ namespace simtree {
 
 struct MarkerPlacementOptions {
   int count = 12;  // markers to place (fewer if the tree has fewer sites)
-  double min_radius_m = 0.004;
+  // Thinnest branch to tape: 3 mm (a 6 mm twig), so the slender twig levels of small trees
+  // (level 4 ends at 3-5 mm) still get a marker, as in the paper.
+  double min_radius_m = 0.003;
   std::optional<Eigen::Vector3d> camera_position = std::nullopt;  // world; none: no preference
   uint64_t seed = 0;
   double fork_clearance_m = 0.05;

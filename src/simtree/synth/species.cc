@@ -344,8 +344,8 @@ SpeciesParams AcerPalmatum() {
       "of fine twigs with drooping tips; opposite, decussate buds.";
   p.height_m = 3.0;
   p.height_spread = 0.1;
-  p.trunk_base_radius_m = 0.045;
-  p.trunk_radius_spread = 0.1;
+  p.trunk_base_radius_m = 0.0355;
+  p.trunk_radius_spread = 0.05;
   p.min_twig_radius_m = 0.002;
   p.pipe_exponent = 2.5;
   p.shed_shoots_per_m = 1.0;
@@ -374,7 +374,7 @@ SpeciesParams AcerPalmatum() {
       Level(45, 12, 0.65, 0.3, 0.5, 0.2, Shape(0.04, 0.2, 8, -1.0, -2.5), Buds(0.05, 0.0, 0.0)),
   };
   // Table IV: 1.07-1.50 Hz, damping ratio 0.031-0.060.
-  p.wood = Wood(7.5e9, 950.0, {1.0, 0.055}, {6.0, 0.045});
+  p.wood = Wood(7.0e9, 950.0, {1.0, 0.055}, {6.0, 0.045});
   return p;
 }
 
@@ -385,12 +385,12 @@ SpeciesParams Magnolia() {
       "Saucer magnolia (Magnolia x soulangeana), a young multi-stemmed tree of about 3.5 m in "
       "winter: a low fork into a few thick, upright stems, an open crown of few stout, upturned "
       "branches and thick twigs; alternate buds on a 137.5 degree spiral.";
-  p.height_m = 3.6;
+  p.height_m = 3.9;
   p.height_spread = 0.1;
-  p.trunk_base_radius_m = 0.05;
-  p.trunk_radius_spread = 0.1;
+  p.trunk_base_radius_m = 0.027;
+  p.trunk_radius_spread = 0.05;
   p.min_twig_radius_m = 0.003;
-  p.pipe_exponent = 2.4;
+  p.pipe_exponent = 2.8;
   p.shed_shoots_per_m = 1.5;
   p.phyllotaxis = Phyllotaxis::kAlternate;
   p.divergence_angle_deg = 137.5;
@@ -415,7 +415,7 @@ SpeciesParams Magnolia() {
       Level(35, 10, 0.8, 0.25, 0.3, 0.2, Shape(0.05, 0.3, 8, 1.5, 2.0), Buds(0.06, 0.0, 0.0)),
   };
   // Table IV: 0.72-1.19 Hz, damping ratio 0.023-0.033.
-  p.wood = Wood(8.5e9, 900.0, {0.72, 0.032}, {5.0, 0.035});
+  p.wood = Wood(6.5e9, 1000.0, {0.72, 0.032}, {5.0, 0.035});
   return p;
 }
 
@@ -428,10 +428,10 @@ SpeciesParams AcerRubrum() {
       "decussate buds.";
   p.height_m = 4.0;
   p.height_spread = 0.1;
-  p.trunk_base_radius_m = 0.045;
-  p.trunk_radius_spread = 0.1;
+  p.trunk_base_radius_m = 0.03;
+  p.trunk_radius_spread = 0.05;
   p.min_twig_radius_m = 0.002;
-  p.pipe_exponent = 2.5;
+  p.pipe_exponent = 2.8;
   p.shed_shoots_per_m = 1.0;
   p.phyllotaxis = Phyllotaxis::kOpposite;
   p.divergence_angle_deg = 90.0;
@@ -457,7 +457,7 @@ SpeciesParams AcerRubrum() {
       Level(35, 10, 0.9, 0.25, 0.3, 0.2, Shape(0.04, 0.2, 8, 1.0, 1.0), Buds(0.05, 0.0, 0.0)),
   };
   // Table IV: 0.93-1.50 Hz, damping ratio 0.022-0.056.
-  p.wood = Wood(9.0e9, 900.0, {0.9, 0.045}, {6.0, 0.040});
+  p.wood = Wood(7.5e9, 900.0, {0.9, 0.045}, {6.0, 0.040});
   return p;
 }
 

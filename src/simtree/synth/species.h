@@ -16,12 +16,14 @@
 // the trunk base has the drawn radius.
 //
 // Size knobs and the first natural frequency. The tree sways like a tapered cantilever carrying
-// its crown: f ~ r / L^2 * sqrt(E / rho) (uniform cantilever: f = 0.56 r / (2 L^2) sqrt(E / rho)).
-// So f falls as 1 / height^2 (height_m; the branch lengths scale with it), rises about linearly
-// with trunk_base_radius_m, rises with sqrt(youngs_modulus_pa / density_kg_m3); longer branches
-// (levels[0].length_ratio, the crown profile) put more mass high and far out and lower it, and a
-// larger pipe_exponent makes the branches thinner relative to the trunk (lighter crown, higher f
-// of the whole tree, lower f of each branch).
+// its crown: f ~ r / L^2 sqrt(E / rho) (a uniform cantilever: f = 0.56 r / (2 L^2) sqrt(E / rho)).
+// With the pipe model every radius scales with the trunk's, so f rises linearly with
+// trunk_base_radius_m (while no twig is held at min_twig_radius_m; held twigs add crown mass and
+// lower it a little more), falls as 1 / height_m^2 (the branch lengths scale with the height), and
+// rises with sqrt(wood.youngs_modulus_pa / wood.density_kg_m3). Longer branches
+// (levels[0].length_ratio, the crown profile, trunk.fork_length_ratio) put more mass high and far
+// out and lower it. Measured with the FEM oracle on seeds 1-4 (docs/species.md), the presets'
+// first frequencies sit inside the paper's Table IV ranges.
 
 #include <array>
 #include <filesystem>
@@ -121,12 +123,15 @@ struct SpeciesParams {
   std::string name;         // preset name or a custom one
   std::string description;  // what it is modelled on
 
-  // Size. Heights are drawn uniformly in height_m * (1 +- height_spread) and the generated tree is
-  // scaled to exactly that height.
+  // Size. A tree's height H is drawn uniformly in height_m (1 +- height_spread) and the generated
+  // tree is scaled to exactly that height. Its trunk base radius follows elastic similarity
+  // (McMahon: diameter ~ height^1.5), trunk_base_radius_m (H / height_m)^1.5, times
+  // (1 +- trunk_radius_spread): taller trees of a species are thicker, and their first frequency
+  // (~ r / H^2 ~ H^-0.5) varies much less than their height.
   double height_m = 3.5;
   double height_spread = 0.1;
   double trunk_base_radius_m = 0.04;
-  double trunk_radius_spread = 0.1;
+  double trunk_radius_spread = 0.05;
   double min_twig_radius_m = 0.002;  // radii never go below this (thinnest twig tips)
 
   // Pipe model: r_parent^n = sum r_child^n at every fork, n = pipe_exponent (da Vinci: 2;

@@ -172,13 +172,13 @@ double CrownProfile(const SpeciesParams& p, double t) {
 class Grower {
  public:
   Grower(const SpeciesParams& species, uint64_t seed, const GeneratorOptions& options)
-      : species_(species), options_(options), rng_(seed) {}
+      : species_(species), options_(options), seed_(seed), rng_(seed) {}
 
-  TreeGenerationResult Grow(uint64_t seed) {
+  TreeGenerationResult Grow() {
     TreeGenerationResult result;
     height_ = species_.height_m * (1.0 + species_.height_spread * rng_.Symmetric());
-    trunk_radius_ =
-        species_.trunk_base_radius_m * (1.0 + species_.trunk_radius_spread * rng_.Symmetric());
+    trunk_radius_ = species_.trunk_base_radius_m * std::pow(height_ / species_.height_m, 1.5) *
+                    (1.0 + species_.trunk_radius_spread * rng_.Symmetric());
     GrowTrunk();
     for (int level = 1; level <= species_.branching_levels(); ++level) {
       std::vector<Candidate> candidates;
@@ -191,7 +191,7 @@ class Grower {
       for (const Candidate& c : candidates) TryToGrow(c);
     }
     result.scale = ScaleToHeight();
-    result.tree = BuildTree(seed, &result.tip_radius_m);
+    result.tree = BuildTree(&result.tip_radius_m);
     result.height_m = height_;
     result.trunk_base_radius_m = trunk_radius_;
     result.redrawn_directions = redrawn_;
@@ -445,7 +445,7 @@ class Grower {
   }
 
   // The finished Tree with pipe-model radii (header, step 8).
-  Tree BuildTree(uint64_t seed, double* tip_radius) const {
+  Tree BuildTree(double* tip_radius) const {
     const int count = static_cast<int>(axes_.size());
     const double n = species_.pipe_exponent;
     // Pipe quantity P per node, children before parents (they have larger ids).
@@ -469,7 +469,7 @@ class Grower {
 
     Tree tree;
     tree.metadata.species = species_.name;
-    tree.metadata.source = fmt::format("synth {} seed {}", species_.name, seed);
+    tree.metadata.source = fmt::format("synth {} seed {}", species_.name, seed_);
     tree.branches.resize(count);
     for (int id = 0; id < count; ++id) {
       const Axis& a = axes_[id];
@@ -492,6 +492,7 @@ class Grower {
 
   const SpeciesParams& species_;
   const GeneratorOptions& options_;
+  uint64_t seed_;
   Random rng_;
   double height_ = 0.0;
   double trunk_radius_ = 0.0;
@@ -514,7 +515,7 @@ TreeGenerationResult GrowTree(const SpeciesParams& species, uint64_t seed,
                      "expected max_branches >= 1, max_nodes >= 3 and non-negative clearances");
   }
   Grower grower(species, seed, options);
-  return grower.Grow(seed);
+  return grower.Grow();
 }
 
 Tree GenerateTree(const SpeciesParams& species, uint64_t seed, const GeneratorOptions& options) {

@@ -9,23 +9,30 @@
 //  2. Along every axis of the level, buds sit at botanical nodes buds.spacing_m apart (random
 //     phase, +-15%) from branching_start_fraction (the trunk: clear_bole_fraction) to the tip;
 //     opposite phyllotaxis puts two buds 180 degrees apart per node, alternate one; node k turns
-//     k * divergence_angle_deg around the parent axis (in a parallel-transported frame), plus
-//     jitter. A bud breaks with buds.break_probability, less when it faces up or down
-//     (lateral_preference). Each bud snaps to the nearest polyline node, so a child starts
-//     exactly on a node of its parent (no gap); both buds of an opposite pair share the node.
+//     k x divergence_angle_deg around the parent axis (in a parallel-transported frame), plus a
+//     random twist of up to phyllotaxis_jitter_deg per node (so decussate pairs do not stack in
+//     four exact ranks) and as much jitter per bud. A bud breaks with buds.break_probability,
+//     less when it faces up or down (lateral_preference). The buds of a node share one "vigour"
+//     draw, so an opposite pair breaks together; the draws are stratified in blocks of four
+//     nodes, so every axis gets close to its expected number of children (branch counts vary
+//     little between seeds, and few long branches stay bare). Each bud snaps to the nearest
+//     polyline node, so a child starts exactly on a node of its parent (no gap); both buds of an
+//     opposite pair share the node.
 //  3. A child leaves at branching_angle_deg +- spread from its parent's tangent there. Its length
-//     is length_ratio x the parent's remaining length (level 1: x the height x the crown
-//     profile) x (1 +- length_spread); shorter than min_branch_length_m and it is not grown.
+//     is length_ratio x (parent length - remaining_length_weight x attachment arc length) (level
+//     1: x the height x the crown profile) x (1 +- length_spread); shorter than
+//     min_branch_length_m and it is not grown.
 //  4. Its axis is integrated in small steps: two sine waves of curvature in perpendicular planes
 //     (random phase, a few low-frequency bends: smooth, no zig-zag) plus tropism towards or away
 //     from the vertical; nodes every node_spacing_m (at least 2 segments, so 3 nodes).
 //  5. Clearance: each new axis is checked against every axis grown so far (a spatial hash of
-//     segments); if it comes within clearance_radii x the sum of the two estimated radii (and at
-//     least min_clearance_m) of one, its direction is drawn again (angle and azimuth jitter), up
-//     to max_direction_tries times, then the bud is dropped. Near its own base a child is not
-//     checked against its parent and the siblings on the same node until it has left them at its
-//     branching angle. Radii are not known while growing (they come from the finished tree), so
-//     the check uses r ~ trunk radius x (branch length / trunk length)^1.3.
+//     segments, segment_grid.h); if it comes within clearance_radii x the sum of the two
+//     estimated radii (and at least min_clearance_m) of one, its direction is drawn again (angle
+//     and azimuth jitter), up to max_direction_tries times, then the bud is dropped. Near its own
+//     base a child is not checked against its parent and the siblings on the same node until it
+//     has left them at its branching angle. Radii are not known while growing (they come from the
+//     finished tree), so the check estimates a base radius trunk radius x (length / height)^1.3
+//     tapering to a quarter at the tip.
 //  6. Budget: when a level's candidates would pass max_branches or max_nodes, its shortest
 //     candidates are not grown (suppressed shoots).
 //  7. The tree is scaled about the origin so its highest node is exactly the drawn height.
