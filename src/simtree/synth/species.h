@@ -22,7 +22,7 @@
 // lower it a little more), falls as 1 / height_m^2 (the branch lengths scale with the height), and
 // rises with sqrt(wood.youngs_modulus_pa / wood.density_kg_m3). Longer branches
 // (levels[0].length_ratio, the crown profile, trunk.fork_length_ratio) put more mass high and far
-// out and lower it. Measured with the FEM oracle on seeds 1-10 (docs/species.md), the presets.
+// out and lower it. Measured with the FEM oracle on seeds 1-10 (docs/species.md), the presets'
 // first frequencies sit inside the paper's Table IV ranges.
 
 #include <array>
