@@ -23,7 +23,7 @@
 // rises with sqrt(wood.youngs_modulus_pa / wood.density_kg_m3). Longer branches
 // (levels[0].length_ratio, the crown profile, trunk.fork_length_ratio) put more mass high and far
 // out and lower it. Measured with the FEM oracle on seeds 1-10 (docs/species.md), the presets'
-// first frequencies sit inside the paper's Table IV ranges.
+// first frequencies sit inside the paper's Table IV ranges (one acer_palmatum in ten 3% above).
 
 #include <array>
 #include <filesystem>
