@@ -16,6 +16,7 @@
 #include <cmath>
 #include <thread>
 
+#include "simtree/core/frames.h"
 #include "simtree/core/tree_file.h"
 #include "simtree/synth/rgbd_renderer.h"
 #include "simtree/synth/sensor_pose.h"
@@ -38,6 +39,44 @@ Tree BenchTree() {
     m.position = b.PointAt(m.arc_length);
     tree.markers.push_back(m);
   }
+  return tree;
+}
+
+// A procedural-size tree: `branches` branches of 7 nodes (a trunk and up to 6 children per
+// branch, breadth first), radii from 6 cm down to about 2 mm, spread in a crown 2-4 m up.
+Tree LargeTree(int branches) {
+  Tree tree;
+  tree.branches.reserve(branches);  // `p` below stays valid while children are added
+  auto add = [&](int parent, int parent_node, const Eigen::Vector3d& base,
+                 const Eigen::Vector3d& direction, double length, double radius) {
+    Branch b;
+    b.id = tree.size();
+    b.parent = parent;
+    b.parent_node = parent_node;
+    const Eigen::Vector3d d = direction.normalized();
+    const Eigen::Vector3d side = d.unitOrthogonal();
+    for (int i = 0; i < 7; ++i) {
+      const double x = i / 6.0;
+      b.nodes.push_back({base + length * (x * d + 0.08 * x * x * side),
+                         std::max(0.002, radius * (1.0 - 0.5 * x))});
+    }
+    tree.branches.push_back(std::move(b));
+  };
+  add(-1, 0, {0, 0, 0}, {0, 0, 1}, 2.5, 0.06);
+  for (int parent = 0; tree.size() < branches; ++parent) {
+    const Branch& p = tree.branches[parent];
+    const double length = 0.65 * (p.nodes.back().position - p.nodes.front().position).norm();
+    for (int c = 0; c < 6 && tree.size() < branches; ++c) {
+      const int node = 1 + c;
+      const double a = 2.39996 * tree.size();
+      const Eigen::Vector3d dir = (p.nodes[6].position - p.nodes[0].position).normalized() +
+                                  1.1 * Eigen::Vector3d(std::cos(a), std::sin(a), 0.2);
+      add(parent, node, tree.branches[parent].nodes[node].position, dir, length,
+          0.6 * tree.branches[parent].nodes[node].radius);
+    }
+  }
+  AssignLevels(tree);
+  ComputeFrames(tree);
   return tree;
 }
 
@@ -93,6 +132,25 @@ void BM_SensorSetPose(benchmark::State& state) {
   state.counters["nodes"] = f.pose.node_count();
 }
 BENCHMARK(BM_SensorSetPose)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// A procedural-size tree (1,500 branches, 10,500 nodes): pose update and a whole frame.
+void BM_SensorFrameLargeTree(benchmark::State& state) {
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, Threads(state));
+  const Tree tree = LargeTree(1500);
+  SensorScene scene(tree, DefaultSceneOptions(tree, 7));
+  TreePose pose(tree);
+  const Eigen::Isometry3d camera = LookAtCamera({3.0, 0.0, 1.4}, {0.0, 0.0, 2.2});
+  int frame = 0;
+  for (auto _ : state) {
+    Sway(tree, frame, pose);
+    scene.SetPose(pose);
+    RenderResult r =
+        RenderRgbd(scene, SensorModel::AzureKinectNfov(), camera, {.seed = 1, .frame = frame++});
+    benchmark::DoNotOptimize(r.image.depth.pixels.data());
+  }
+  state.counters["nodes"] = pose.node_count();
+}
+BENCHMARK(BM_SensorFrameLargeTree)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Ray casting and depth measurement only: no shadow rays, no marker boxes.
 void BM_SensorRenderBare(benchmark::State& state) {

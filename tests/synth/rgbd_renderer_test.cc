@@ -152,6 +152,8 @@ TEST(RgbdRenderer, AKnownCylinderMeasuresTheRightDepthWithTheModelledNoise) {
     EXPECT_NEAR(mean, 0.0, 5.0 / std::sqrt(n)) << d;
     EXPECT_NEAR(std, 1.0, 0.05) << d;
     raw_std[which] = std::sqrt(raw2 / n - (raw / n) * (raw / n));
+    RecordProperty(which == 0 ? "raw_std_mm_at_1m" : "raw_std_mm_at_3m",
+                   std::to_string(1000.0 * raw_std[which]));
   }
   // The spread grows from about 2.6 mm at 1 m to about 10.5 mm at 3 m.
   EXPECT_NEAR(raw_std[0], 0.0026, 0.0004);
@@ -396,6 +398,27 @@ TEST(RgbdRenderer, TheHardSensorLosesAndCorruptsMore) {
   }
   EXPECT_LT(hard.measurement.count(DepthEffect::kMeasured),
             normal.measurement.count(DepthEffect::kMeasured));
+}
+
+TEST(RgbdRenderer, BlankColourWithoutDepthAsTheSdkTransformationGives) {
+  const Tree tree = test::VerticalCylinder(0, 0, 3.0, 0.1);
+  const SensorScene scene(tree, test::BareScene());
+  SensorModel sensor = SensorModel::AzureKinectNfov();
+  sensor.blank_color_without_depth = true;
+  const RenderResult r = RenderRgbd(scene, sensor, LookAtCamera({1.5, 0, 1.5}, {0, 0, 1.5}));
+  int blank = 0, coloured = 0;
+  for (size_t i = 0; i < r.image.depth.pixels.size(); ++i) {
+    const int sum = r.image.color.pixels[3 * i] + r.image.color.pixels[3 * i + 1] +
+                    r.image.color.pixels[3 * i + 2];
+    if (r.image.depth.pixels[i] == 0) {
+      ASSERT_EQ(sum, 0);
+      ++blank;
+    } else {
+      coloured += sum > 0;
+    }
+  }
+  EXPECT_GT(blank, 100000);  // the sky
+  EXPECT_GT(coloured, 20000);
 }
 
 TEST(RgbdRenderer, RefusesABadCameraOrSensor) {
