@@ -3,8 +3,8 @@
 // (kind, branch, marker) and its exact depth, before any sensor error.
 
 #include <cstdint>
-#include <vector>
 
+#include "simtree/io/image_io.h"
 #include "simtree/synth/sensor_scene.h"
 
 namespace simtree {
@@ -17,15 +17,6 @@ struct PixelLabel {
   float depth_m = 0.0f;     // exact camera z of the surface; 0 where nothing is hit
 };
 
-struct LabelImage {
-  int width = 0;
-  int height = 0;
-  std::vector<PixelLabel> pixels;  // row-major
-
-  LabelImage() = default;
-  LabelImage(int w, int h) : width(w), height(h), pixels(static_cast<size_t>(w) * h) {}
-  PixelLabel& at(int x, int y) { return pixels[static_cast<size_t>(y) * width + x]; }
-  const PixelLabel& at(int x, int y) const { return pixels[static_cast<size_t>(y) * width + x]; }
-};
+using LabelImage = Image<PixelLabel, 1>;  // row-major, at(x, y)
 
 }  // namespace simtree

@@ -20,16 +20,7 @@ struct PixelTruth {
   float width_px = 0.0f;       // projected width 2 r f / z of a thin curve there; 0 for surfaces
 };
 
-struct DepthTruthImage {
-  int width = 0;
-  int height = 0;
-  std::vector<PixelTruth> pixels;  // row-major
-
-  DepthTruthImage() = default;
-  DepthTruthImage(int w, int h) : width(w), height(h), pixels(static_cast<size_t>(w) * h) {}
-  PixelTruth& at(int x, int y) { return pixels[static_cast<size_t>(y) * width + x]; }
-  const PixelTruth& at(int x, int y) const { return pixels[static_cast<size_t>(y) * width + x]; }
-};
+using DepthTruthImage = Image<PixelTruth, 1>;  // row-major, at(x, y)
 
 // What happened to a pixel's measurement (the first effect that decided it).
 enum class DepthEffect : uint8_t {

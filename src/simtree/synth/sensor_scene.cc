@@ -63,6 +63,24 @@ void InitRay(RTCRay& ray, const Eigen::Vector3d& origin, const Eigen::Vector3d& 
 
 constexpr size_t kPacket = 16;  // rays per Embree packet
 
+// Lane `i` of a packet of 16 rays; unused lanes repeat a valid ray and are masked out.
+void InitRayLane(RTCRay16& rays, size_t i, const Eigen::Vector3d& origin,
+                 const Eigen::Vector3d& direction, double t_near, double t_far) {
+  rays.org_x[i] = static_cast<float>(origin.x());
+  rays.org_y[i] = static_cast<float>(origin.y());
+  rays.org_z[i] = static_cast<float>(origin.z());
+  rays.dir_x[i] = static_cast<float>(direction.x());
+  rays.dir_y[i] = static_cast<float>(direction.y());
+  rays.dir_z[i] = static_cast<float>(direction.z());
+  rays.tnear[i] = static_cast<float>(t_near);
+  rays.tfar[i] =
+      std::isfinite(t_far) ? static_cast<float>(t_far) : std::numeric_limits<float>::infinity();
+  rays.time[i] = 0.0f;
+  rays.mask[i] = 0xFFFFFFFFu;
+  rays.id[i] = static_cast<unsigned>(i);
+  rays.flags[i] = 0;
+}
+
 // The nearest t > 0 at which origin + t direction meets the side of the cone frustum from p0
 // (radius r0) to p1 (radius r1), within the frustum's length; nullopt when it does not.
 std::optional<double> IntersectFrustum(const Eigen::Vector3d& origin,
@@ -701,19 +719,8 @@ void SensorScene::IntersectCoherent(const Eigen::Vector3d& origin,
     const size_t n = std::min(kPacket, directions.size() - start);
     for (size_t i = 0; i < kPacket; ++i) {
       valid[i] = i < n ? -1 : 0;
-      const Eigen::Vector3d& d = directions[start + std::min(i, n - 1)];
-      packet.ray.org_x[i] = static_cast<float>(origin.x());
-      packet.ray.org_y[i] = static_cast<float>(origin.y());
-      packet.ray.org_z[i] = static_cast<float>(origin.z());
-      packet.ray.dir_x[i] = static_cast<float>(d.x());
-      packet.ray.dir_y[i] = static_cast<float>(d.y());
-      packet.ray.dir_z[i] = static_cast<float>(d.z());
-      packet.ray.tnear[i] = 0.0f;
-      packet.ray.tfar[i] = std::numeric_limits<float>::infinity();
-      packet.ray.time[i] = 0.0f;
-      packet.ray.mask[i] = 0xFFFFFFFFu;
-      packet.ray.id[i] = static_cast<unsigned>(i);
-      packet.ray.flags[i] = 0;
+      InitRayLane(packet.ray, i, origin, directions[start + std::min(i, n - 1)], 0.0,
+                  std::numeric_limits<double>::infinity());
       packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
       packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
     }
@@ -755,19 +762,7 @@ void SensorScene::OccludedCoherent(std::span<const Eigen::Vector3d> origins,
     const size_t n = std::min(kPacket, origins.size() - start);
     for (size_t i = 0; i < kPacket; ++i) {
       valid[i] = i < n ? -1 : 0;
-      const Eigen::Vector3d& o = origins[start + std::min(i, n - 1)];
-      packet.org_x[i] = static_cast<float>(o.x());
-      packet.org_y[i] = static_cast<float>(o.y());
-      packet.org_z[i] = static_cast<float>(o.z());
-      packet.dir_x[i] = static_cast<float>(direction.x());
-      packet.dir_y[i] = static_cast<float>(direction.y());
-      packet.dir_z[i] = static_cast<float>(direction.z());
-      packet.tnear[i] = static_cast<float>(t_near);
-      packet.tfar[i] = static_cast<float>(t_far);
-      packet.time[i] = 0.0f;
-      packet.mask[i] = 0xFFFFFFFFu;
-      packet.id[i] = static_cast<unsigned>(i);
-      packet.flags[i] = 0;
+      InitRayLane(packet, i, origins[start + std::min(i, n - 1)], direction, t_near, t_far);
     }
     rtcOccluded16(valid, impl_->scene, &context, &packet);
     for (size_t i = 0; i < n; ++i) occluded[start + i] = packet.tfar[i] < 0.0f;
