@@ -71,6 +71,12 @@ TEST(RgbdRenderer, Tree02LooksLikeATreeOnGrassUnderASky) {
   const auto dir = test::TempDir();
   for (int view = 0; view < 3; ++view) {
     const Eigen::Isometry3d camera = CameraAroundTree(tree, 3.0, 1.4, 2.1 * view);
+    if (view == 2) {  // a pull: a rope from a first-level branch to a stake on the ground
+      const int branch = tree.markers[1].branch;
+      scene.SetRope(RopeSegment{.branch = branch,
+                                .arc_length = 0.8 * tree.branches[branch].Length(),
+                                .anchor = camera.translation() + Eigen::Vector3d(0.6, 1.2, -1.4)});
+    }
     const RenderResult r = RenderRgbd(scene, sensor, camera, {.seed = 7, .frame = view});
     const std::string name = "tree02_view" + std::to_string(view);
     WritePng(r.image.color, dir / (name + "_color.png"));

@@ -21,22 +21,26 @@ float LatticeValue(int64_t ix, int64_t iy, uint64_t seed) {
 
 float Smooth(float t) { return t * t * (3.0f - 2.0f * t); }
 
+// floor() without a library call (the x86-64 baseline has no rounding instruction).
+int64_t FastFloor(double x) {
+  const auto i = static_cast<int64_t>(x);
+  return x < static_cast<double>(i) ? i - 1 : i;
+}
+
 Rgb Mix(const Rgb& a, const Rgb& b, float t) { return a + (b - a) * std::clamp(t, 0.0f, 1.0f); }
 
 }  // namespace
 
 float ValueNoise(double x, double y, uint64_t seed, int period_x) {
-  const double fx = std::floor(x);
-  const double fy = std::floor(y);
-  int64_t x0 = static_cast<int64_t>(fx);
+  int64_t x0 = FastFloor(x);
   int64_t x1 = x0 + 1;
-  const int64_t y0 = static_cast<int64_t>(fy);
+  const int64_t y0 = FastFloor(y);
+  const float tx = Smooth(static_cast<float>(x - static_cast<double>(x0)));
+  const float ty = Smooth(static_cast<float>(y - static_cast<double>(y0)));
   if (period_x > 0) {
     x0 = ((x0 % period_x) + period_x) % period_x;
     x1 = ((x1 % period_x) + period_x) % period_x;
   }
-  const float tx = Smooth(static_cast<float>(x - fx));
-  const float ty = Smooth(static_cast<float>(y - fy));
   const float a = LatticeValue(x0, y0, seed);
   const float b = LatticeValue(x1, y0, seed);
   const float c = LatticeValue(x0, y0 + 1, seed);
@@ -90,7 +94,7 @@ Rgb TapeAlbedo(double angle_rad, double offset_m, uint64_t seed) {
 }
 
 Rgb GroundAlbedo(double x, double y, uint64_t seed) {
-  const float patches = FractalNoise(x / 1.5, y / 1.5, seed + 11, 2);
+  const float patches = ValueNoise(x / 1.5, y / 1.5, seed + 11);
   const float straw = ValueNoise(x / 0.4, y / 0.4, seed + 23);
   const float blades = ValueNoise(x / 0.012, y / 0.012, seed + 37);
   const Rgb grass(0.30f, 0.36f, 0.18f);
@@ -102,7 +106,7 @@ Rgb GroundAlbedo(double x, double y, uint64_t seed) {
 }
 
 Rgb HedgeAlbedo(double along_m, double z, uint64_t seed) {
-  const float clumps = FractalNoise(along_m / 0.35, z / 0.35, seed + 41, 2);
+  const float clumps = ValueNoise(along_m / 0.35, z / 0.35, seed + 41);
   const float leaves = ValueNoise(along_m / 0.03, z / 0.03, seed + 43);
   const Rgb dark(0.07f, 0.14f, 0.06f);
   const Rgb light(0.20f, 0.30f, 0.13f);
