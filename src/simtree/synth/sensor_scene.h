@@ -1,12 +1,14 @@
 #pragma once
-// What the virtual sensor sees: an Embree 3 scene of a tree's branches as generalized cylinders
-// (tight triangle tubes, sensor_tree_tubes.h, with the true surface's normals), red tape bands at
-// the tree's
-// markers, a ground plane z = 0, an evergreen hedge around the tree beyond the sensor's range, a
-// few objects inside it, optional occluders (posts, shrubs) and an optional rope from the tree to
-// an anchor (posts, shrub twigs and the rope are Embree round curves). Static parts are built once;
-// SetPose() moves the branches (450 pull frames, so it only rewrites the tubes' vertices and refits
-// their bounding volume hierarchy).
+// What the virtual sensor sees: an Embree 3 scene of a tree's branches as generalized cylinders,
+// red tape bands at the tree's markers, a ground plane z = 0, an evergreen hedge around the tree
+// beyond the sensor's range, a few objects inside it, optional occluders (posts, shrubs) and an
+// optional rope from the tree to an anchor.
+//
+// Branches are traced as tight triangle tubes (sensor_tree_tubes.h) and every hit is moved onto the
+// exact cone frustum of its segment, so depths and normals are the true generalized cylinder's.
+// Posts, shrub twigs and the rope are Embree round curves. Static parts are built once; SetPose()
+// moves the branches (450 pull frames, so it only rewrites the tubes' vertices and refits their
+// bounding volume hierarchy).
 //
 // A hit tells what it hit: the kind of surface, and for a branch its id, rest arc length, radius,
 // angle around the axis and marker id when inside a tape band. Intersect() is thread-safe between

@@ -2,9 +2,10 @@
 // The tree's branches as closed triangle tubes for ray casting: a ring of vertices at every node,
 // carried along the branch by parallel transport, a flat cap at both ends. The rings' vertices lie
 // on the true circles and each branch gets enough sides that the facets stay within `tolerance_m`
-// of the generalized cylinder (a quarter of the sensor's 1 mm step by default), so a hit's depth
-// is exact to well within quantisation. Embree traces these triangles 2-3 times faster than its
-// round curves on this machine (docs/sensor.md), and a new pose only rewrites the vertices.
+// of the generalized cylinder (a quarter of the sensor's 1 mm step by default); SensorScene moves
+// each hit from its facet onto the exact surface. Embree traces these triangles 2-3 times faster
+// than its round curves on this machine (docs/sensor.md), and a new pose only rewrites the
+// vertices.
 //
 // Segments (a branch's node i to node i + 1) are numbered branch by branch, base to tip; the
 // triangles of a branch are contiguous: 2 * sides per segment in order, then the base cap and the
