@@ -177,7 +177,19 @@ SynthReport RunSynth(const SynthOptions& options, const fs::path& out) {
   placement.count = options.markers;
   placement.camera_position = pull_camera.translation();
   placement.seed = SeedFor(options.seed, Stream::kMarkers);
-  PlaceMarkers(tree, placement);
+  // Tape the camera can see: a band at least `kMinTapeWidthPx` wide in the image at the crown's
+  // distance (a person tapes branches they can see on the tablet). Thinner twigs would carry
+  // markers no tracker finds at 640 x 576.
+  const SensorModel sensor = options.hard ? SensorModel::Hard() : SensorModel::AzureKinectNfov();
+  constexpr double kMinTapeWidthPx = 2.0;
+  const double crown_distance = (pull_camera.translation() - pull_setup.attach).norm();
+  placement.min_radius_m = std::max(
+      placement.min_radius_m, 0.5 * kMinTapeWidthPx * crown_distance / sensor.FocalLengthPx());
+  const MarkerPlacementResult placed = PlaceMarkers(tree, placement);
+  std::string per_level;
+  for (int count : placed.markers_per_level) per_level += fmt::format(" {}", count);
+  spdlog::info("synth: markers on branches of radius >= {:.1f} mm, per level:{}; {} hidden",
+               1e3 * placement.min_radius_m, per_level, placed.hidden);
   tree.metadata.source = fmt::format("synth {} seed {}", species.name, options.seed);
   report.branches = tree.size();
   report.nodes = tree.NodeCount();
@@ -260,7 +272,6 @@ SynthReport RunSynth(const SynthOptions& options, const fs::path& out) {
   report.fem_s = SecondsSince(fem_start);
 
   // ---- 3. The sensor and the scene.
-  const SensorModel sensor = options.hard ? SensorModel::Hard() : SensorModel::AzureKinectNfov();
   const CameraIntrinsics intrinsics = sensor.Intrinsics();
   SensorScene scene(tree,
                     DefaultSceneOptions(tree, SeedFor(options.seed, Stream::kScene), options.hard));
