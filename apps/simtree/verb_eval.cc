@@ -45,6 +45,28 @@ nlohmann::ordered_json SummaryJson(const ScoreSummary& s) {
           {"max_damping_error", number(s.max_damping_error)}};
 }
 
+nlohmann::ordered_json LinkScoresJson(const LinkScores& scores) {
+  auto number = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nullptr; };
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const LinkScore& s : scores.links) {
+    out.push_back({{"label", s.label},
+                   {"parent", s.parent},
+                   {"child", s.child},
+                   {"status", ToString(s.status)},
+                   {"message", s.message},
+                   {"truth_frequency_hz", s.value.truth_frequency_hz},
+                   {"truth_damping_ratio", s.value.truth_damping},
+                   {"frequency_hz", number(s.value.frequency_hz)},
+                   {"damping_ratio", number(s.value.damping_ratio)},
+                   {"frequency_error", number(s.value.frequency_error)},
+                   {"damping_error", number(s.value.damping_error)},
+                   {"runner_up_ratio", s.runner_up_ratio},
+                   {"runner_up_frequency_hz", s.runner_up_frequency_hz},
+                   {"nearest_mode_frequency_error", number(s.nearest_mode_frequency_error)}});
+  }
+  return out;
+}
+
 void RegisterEvalIdentification(CLI::App& eval) {
   struct Args {
     std::string materials, truth, tree, json;
@@ -88,6 +110,7 @@ void RegisterEvalIdentification(CLI::App& eval) {
       if (!kind) std::printf("%s\n", FormatLinkScores(scores).c_str());
       std::printf("%s\n", FormatSummary(scores.estimator, scores.summary).c_str());
       per_estimator[scores.estimator] = SummaryJson(scores.summary);
+      per_estimator[scores.estimator]["per_link"] = LinkScoresJson(scores);
     }
     out["links"] = per_estimator;
     if (!args->tree.empty()) {
