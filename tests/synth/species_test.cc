@@ -167,7 +167,7 @@ TEST(Species, StrictErrorsNameTheField) {
                                                  {"frequency_hz": 2, "damping_ratio": 0.05}])");
                }),
                "wood.damping");
-  expect_names(with([](nlohmann::json& d) { d["version"] = 2; }), "version");
+  expect_names(with([](nlohmann::json& d) { d["version"] = 1; }), "version");
   expect_names(with([](nlohmann::json& d) { d["base"] = "oak"; }), "base: unknown preset");
   expect_names(with([](nlohmann::json& d) { d["levels"][1] = 3; }),
                "levels[1]: expected an object");

@@ -309,6 +309,20 @@ TEST(TreeGenerator, SameSeedSameBytesOtherSeedOtherTree) {
   EXPECT_EQ(ReadTreeJson(dir / "a.json").size(), GenerateTree(p, 7).size());
 }
 
+// Longest path along the branches from the trunk base to a tip, from the tree alone.
+double LongestPathToTip(const Tree& tree) {
+  const auto path_to = [&](auto& self, int branch, int node) -> double {
+    const Branch& b = tree.branches[branch];
+    const double below = b.is_trunk() ? 0.0 : self(self, b.parent, b.parent_node);
+    return below + b.ArcLengths()[node];
+  };
+  double longest = 0.0;
+  for (const Branch& b : tree.branches) {
+    longest = std::max(longest, path_to(path_to, b.id, static_cast<int>(b.nodes.size()) - 1));
+  }
+  return longest;
+}
+
 TEST(TreeGenerator, SizeKnobsMoveTheTree) {
   SpeciesParams p = SpeciesPreset("acer_rubrum");
   p.height_spread = 0.0;
@@ -317,7 +331,27 @@ TEST(TreeGenerator, SizeKnobsMoveTheTree) {
   p.trunk_base_radius_m = 0.05;
   const TreeGenerationResult r = GrowTree(p, 3);
   EXPECT_NEAR(r.height_m, 3.0, 1e-12);
-  EXPECT_NEAR(r.tree.trunk().base().radius, 0.05, 1e-12);
+  // Elastic similarity on the longest path: a tree whose longest path is longest_path_ratio x
+  // height_m has the species' trunk radius; a longer one is thicker as path^1.5.
+  const double path = LongestPathToTip(r.tree);
+  EXPECT_NEAR(r.longest_path_m, path, 1e-9);
+  EXPECT_GT(path, 3.0);  // at least the height (the trunk rises from the ground)
+  EXPECT_NEAR(r.tree.trunk().base().radius,
+              0.05 * std::pow(path / (p.longest_path_ratio * 3.0), 1.5), 1e-12);
+  // The same tree with twice the radius knob (growth does not depend on it but for the
+  // clearance check's guess, which a zero clearance switches off).
+  GeneratorOptions no_clearance;
+  no_clearance.clearance_radii = 0.0;
+  no_clearance.min_clearance_m = 0.0;
+  const TreeGenerationResult thin = GrowTree(p, 3, no_clearance);
+  p.trunk_base_radius_m = 0.1;
+  const TreeGenerationResult thick = GrowTree(p, 3, no_clearance);
+  EXPECT_EQ(thin.tree.size(), thick.tree.size());
+  EXPECT_NEAR(thick.trunk_base_radius_m, 2 * thin.trunk_base_radius_m, 1e-12);
+  // A species whose typical path is longer makes the same tree thinner.
+  p.longest_path_ratio *= 2;
+  EXPECT_NEAR(GrowTree(p, 3, no_clearance).trunk_base_radius_m,
+              thick.trunk_base_radius_m / std::pow(2.0, 1.5), 1e-12);
 }
 
 TEST(TreeGenerator, BudgetsAreHonoured) {

@@ -15,7 +15,7 @@ namespace simtree {
 namespace {
 
 constexpr const char* kSpeciesFormat = "simtree.species";
-constexpr int kSpeciesFormatVersion = 1;
+constexpr int kSpeciesFormatVersion = 2;  // 2: longest_path_ratio
 constexpr int kMinLevels = 4;
 constexpr int kMaxLevels = 6;
 
@@ -83,6 +83,7 @@ void VisitSpecies(P& p, V& v) {
   v.Number("height_spread", p.height_spread, 0.0, 0.5);
   v.Number("trunk_base_radius_m", p.trunk_base_radius_m, 0.005, 0.3);
   v.Number("trunk_radius_spread", p.trunk_radius_spread, 0.0, 0.5);
+  v.Number("longest_path_ratio", p.longest_path_ratio, 0.5, 3.0);
   v.Number("min_twig_radius_m", p.min_twig_radius_m, 0.0005, 0.01);
   v.Number("pipe_exponent", p.pipe_exponent, 1.5, 3.5);
   v.Number("shed_shoots_per_m", p.shed_shoots_per_m, 0.0, 100.0);
@@ -344,8 +345,11 @@ SpeciesParams AcerPalmatum() {
       "of fine twigs with drooping tips; opposite, decussate buds.";
   p.height_m = 3.0;
   p.height_spread = 0.1;
-  p.trunk_base_radius_m = 0.0355;
-  p.trunk_radius_spread = 0.05;
+  // No extra spread on the trunk radius: the arching stems' longest path already varies it
+  // +-20% between seeds.
+  p.trunk_base_radius_m = 0.0349;
+  p.trunk_radius_spread = 0.0;
+  p.longest_path_ratio = 1.32;
   p.min_twig_radius_m = 0.002;
   p.pipe_exponent = 2.5;
   p.shed_shoots_per_m = 1.0;
@@ -389,6 +393,7 @@ SpeciesParams Magnolia() {
   p.height_spread = 0.1;
   p.trunk_base_radius_m = 0.027;
   p.trunk_radius_spread = 0.05;
+  p.longest_path_ratio = 1.08;
   p.min_twig_radius_m = 0.003;
   p.pipe_exponent = 2.8;
   p.shed_shoots_per_m = 1.5;
@@ -430,6 +435,7 @@ SpeciesParams AcerRubrum() {
   p.height_spread = 0.1;
   p.trunk_base_radius_m = 0.03;
   p.trunk_radius_spread = 0.05;
+  p.longest_path_ratio = 1.07;
   p.min_twig_radius_m = 0.002;
   p.pipe_exponent = 2.8;
   p.shed_shoots_per_m = 1.0;
@@ -535,7 +541,8 @@ SpeciesParams SpeciesFromJson(const nlohmann::json& doc, const std::string& sour
       reader.String(full["format"], "format") != std::string(kSpeciesFormat)) {
     reader.Fail("format", fmt::format("expected \"{}\"", kSpeciesFormat));
   }
-  if (full.contains("version") && reader.Integer(full["version"], "version") != 1) {
+  if (full.contains("version") &&
+      reader.Integer(full["version"], "version") != kSpeciesFormatVersion) {
     reader.Fail("version", fmt::format("expected {}", kSpeciesFormatVersion));
   }
   full.erase("format");

@@ -13,17 +13,22 @@
 // it (level 1: times the tree height and a crown profile). Every axis bends smoothly: a few
 // low-frequency waves (`bend_*`) and a tropism towards (positive) or away from (negative) the
 // vertical. Radii follow the pipe model r_parent^n = sum r_child^n from the twigs down, scaled so
-// the trunk base has the drawn radius.
+// the trunk base has the radius elastic similarity gives the finished tree (below).
 //
 // Size knobs and the first natural frequency. The tree sways like a tapered cantilever carrying
 // its crown: f ~ r / L^2 sqrt(E / rho) (a uniform cantilever: f = 0.56 r / (2 L^2) sqrt(E / rho)).
-// With the pipe model every radius scales with the trunk's, so f rises linearly with
-// trunk_base_radius_m (while no twig is held at min_twig_radius_m; held twigs add crown mass and
-// lower it a little more), falls as 1 / height_m^2 (the branch lengths scale with the height), and
-// rises with sqrt(wood.youngs_modulus_pa / wood.density_kg_m3). Longer branches
-// (levels[0].length_ratio, the crown profile, trunk.fork_length_ratio) put more mass high and far
-// out and lower it. Measured with the FEM oracle on seeds 1-10 (docs/species.md), the presets'
-// first frequencies sit inside the paper's Table IV ranges (one acer_palmatum in ten 3% above).
+// With the pipe model every radius scales with the trunk's. The trunk follows elastic similarity
+// (McMahon and Kronauer 1976: a stem's diameter grows as the 1.5 power of its length to the
+// farthest tip) on the finished tree's longest path from the base to a tip, P:
+// r = trunk_base_radius_m (P / (longest_path_ratio height_m))^1.5. So a tree whose stems grew
+// long (arching, low-forked) is thicker, and f ~ r / P^2 ~ P^-0.5 varies much less between seeds
+// than with a radius drawn apart from the crown (acer_palmatum, seeds 1-30: f1 spread 1.35x
+// instead of 1.75x). f rises linearly with trunk_base_radius_m (while no twig is held at
+// min_twig_radius_m; held twigs add crown mass and lower it a little more), falls as
+// 1 / height_m^2 (trunk_base_radius_m is the typical tree's at that height; between the trees of
+// one species it falls as H^-0.5) and rises with sqrt(wood.youngs_modulus_pa /
+// wood.density_kg_m3). Measured with the FEM oracle on seeds 1-30 (docs/species.md), the
+// presets' first frequencies all sit inside the paper's Table IV ranges.
 
 #include <array>
 #include <filesystem>
@@ -125,13 +130,17 @@ struct SpeciesParams {
 
   // Size. A tree's height H is drawn uniformly in height_m (1 +- height_spread) and the generated
   // tree is scaled to exactly that height. Its trunk base radius follows elastic similarity
-  // (McMahon: diameter ~ height^1.5), trunk_base_radius_m (H / height_m)^1.5, times
-  // (1 +- trunk_radius_spread): taller trees of a species are thicker, and their first frequency
-  // (~ r / H^2 ~ H^-0.5) varies much less than their height.
+  // (McMahon and Kronauer: diameter ~ length to the farthest tip^1.5) on its longest path P from
+  // the base to a tip: trunk_base_radius_m (P / (longest_path_ratio height_m))^1.5, times
+  // (1 +- trunk_radius_spread). Trees whose branches grew longer (taller, or arching further
+  // out) are thicker, and their first frequency (~ r / P^2 ~ P^-0.5) varies little.
   double height_m = 3.5;
   double height_spread = 0.1;
-  double trunk_base_radius_m = 0.04;
+  double trunk_base_radius_m = 0.04;  // of a tree whose longest path is the typical one
   double trunk_radius_spread = 0.05;
+  // A typical tree's longest path from the trunk base to a twig tip, over its height (a central
+  // leader: ~1.07; a low fork into arching stems: ~1.3).
+  double longest_path_ratio = 1.1;
   double min_twig_radius_m = 0.002;  // radii never go below this (thinnest twig tips)
 
   // Pipe model: r_parent^n = sum r_child^n at every fork, n = pipe_exponent (da Vinci: 2;

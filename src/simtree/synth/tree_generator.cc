@@ -177,8 +177,11 @@ class Grower {
   TreeGenerationResult Grow() {
     TreeGenerationResult result;
     height_ = species_.height_m * (1.0 + species_.height_spread * rng_.Symmetric());
-    trunk_radius_ = species_.trunk_base_radius_m * std::pow(height_ / species_.height_m, 1.5) *
-                    (1.0 + species_.trunk_radius_spread * rng_.Symmetric());
+    const double radius_spread = 1.0 + species_.trunk_radius_spread * rng_.Symmetric();
+    // While growing, the clearance check guesses radii from a trunk of a typical tree of this
+    // height; the final trunk radius follows the finished tree's longest path (header, step 8).
+    estimated_trunk_radius_ =
+        species_.trunk_base_radius_m * std::pow(height_ / species_.height_m, 1.5) * radius_spread;
     GrowTrunk();
     for (int level = 1; level <= species_.branching_levels(); ++level) {
       std::vector<Candidate> candidates;
@@ -191,6 +194,11 @@ class Grower {
       for (const Candidate& c : candidates) TryToGrow(c);
     }
     result.scale = ScaleToHeight();
+    result.longest_path_m = LongestPathToTip();
+    trunk_radius_ =
+        species_.trunk_base_radius_m *
+        std::pow(result.longest_path_m / (species_.longest_path_ratio * species_.height_m), 1.5) *
+        radius_spread;
     result.tree = BuildTree(&result.tip_radius_m);
     result.height_m = height_;
     result.trunk_base_radius_m = trunk_radius_;
@@ -205,8 +213,8 @@ class Grower {
  private:
   // Base radius of an axis of `length`, before the pipe model knows it.
   double EstimatedRadius(double length) const {
-    const double r = trunk_radius_ * std::pow(length / height_, 1.3);
-    return std::clamp(r, species_.min_twig_radius_m, trunk_radius_);
+    const double r = estimated_trunk_radius_ * std::pow(length / height_, 1.3);
+    return std::clamp(r, species_.min_twig_radius_m, estimated_trunk_radius_);
   }
   // Estimated radius at arc length s of an axis with base radius r0: tapering to a quarter.
   double EstimatedRadiusAt(double r0, double s, double length) const {
@@ -238,7 +246,7 @@ class Grower {
     const Waves waves = DrawWaves(trunk.shape, rng_);
     Axis axis;
     axis.length = length;
-    axis.estimated_radius = trunk_radius_;
+    axis.estimated_radius = estimated_trunk_radius_;
     axis.points =
         IntegrateAxis(Vec3::Zero(), direction, length,
                       SegmentCount(length, trunk.shape.node_spacing_m), trunk.shape, waves);
@@ -444,6 +452,24 @@ class Grower {
     return scale;
   }
 
+  // The longest path along the axes from the trunk base to a tip (after scaling).
+  double LongestPathToTip() const {
+    std::vector<double> base_path(axes_.size(), 0.0);  // path from the trunk base to each axis
+    double longest = 0.0;
+    for (size_t id = 0; id < axes_.size(); ++id) {  // parents before children
+      const Axis& a = axes_[id];
+      if (a.parent >= 0) {
+        const std::vector<Vec3>& up = axes_[a.parent].points;
+        base_path[id] = base_path[a.parent];
+        for (int i = 1; i <= a.parent_node; ++i) base_path[id] += (up[i] - up[i - 1]).norm();
+      }
+      double path = base_path[id];
+      for (size_t i = 1; i < a.points.size(); ++i) path += (a.points[i] - a.points[i - 1]).norm();
+      longest = std::max(longest, path);
+    }
+    return longest;
+  }
+
   // The finished Tree with pipe-model radii (header, step 8).
   Tree BuildTree(double* tip_radius) const {
     const int count = static_cast<int>(axes_.size());
@@ -495,7 +521,8 @@ class Grower {
   uint64_t seed_;
   Random rng_;
   double height_ = 0.0;
-  double trunk_radius_ = 0.0;
+  double estimated_trunk_radius_ = 0.0;  // for the clearance check while growing
+  double trunk_radius_ = 0.0;            // the finished tree's, from its longest path
   std::vector<Axis> axes_;
   SegmentGrid grid_{0.1};
   int nodes_ = 0;

@@ -32,15 +32,18 @@
 //     base a child is not checked against its parent and the siblings on the same node until it
 //     has left them at its branching angle. Radii are not known while growing (they come from the
 //     finished tree), so the check estimates a base radius trunk radius x (length / height)^1.3
-//     tapering to a quarter at the tip.
+//     tapering to a quarter at the tip, with the trunk radius of a typical tree of the drawn
+//     height, trunk_base_radius_m (H / height_m)^1.5 (+- trunk_radius_spread).
 //  6. Budget: when a level's candidates would pass max_branches or max_nodes, its shortest
 //     candidates are not grown (suppressed shoots).
 //  7. The tree is scaled about the origin so its highest node is exactly the drawn height.
 //  8. Radii: the pipe model from the tips down. Every tip counts 1, each metre of axis
 //     shed_shoots_per_m more, a fork adds its children: P_node = P_next + shed x segment +
-//     sum P_child, r = c P^(1/n), with c chosen so the trunk base has the drawn radius, and never
-//     below min_twig_radius_m. So r^n at a fork is the sum of the children's r^n plus the
-//     continuing axis's r^n (to the shed-shoot term), and radii grow monotonically to the base.
+//     sum P_child, r = c P^(1/n), and never below min_twig_radius_m. c is chosen so the trunk
+//     base has the radius of elastic similarity on the finished tree's longest path from the
+//     base to a tip (species.h): the stem carries the crown it grew, not a drawn one. So r^n at a
+//     fork is the sum of the children's r^n plus the continuing axis's r^n (to the shed-shoot
+//     term), and radii grow monotonically to the base.
 //  9. Levels (AssignLevels), frames (ComputeFrames), metadata, then ValidateTree.
 
 #include <cstdint>
@@ -62,7 +65,8 @@ struct GeneratorOptions {
 struct TreeGenerationResult {
   Tree tree;
   double height_m = 0.0;                // the drawn height, which the tree has exactly
-  double trunk_base_radius_m = 0.0;     // the drawn trunk base radius
+  double trunk_base_radius_m = 0.0;     // the trunk base radius (step 8)
+  double longest_path_m = 0.0;          // longest path from the trunk base to a tip (step 8)
   double scale = 1.0;                   // uniform scale applied in step 7
   double tip_radius_m = 0.0;            // c: radius of a lone tip before the min_twig_radius floor
   int redrawn_directions = 0;           // directions drawn again by the clearance check
