@@ -1,7 +1,9 @@
 // Frame time of the interactive viewer on the authors' tree02, with and without leaves, with the
 // simulation running (a held rope pull and a 5 m/s turbulent wind): the real window, scene, panel
 // and buffer swap, under Xvfb's software OpenGL (Mesa llvmpipe). Starts Xvfb itself when there is
-// no display. docs/benchmarks.md, "Viewer and renderer", keeps the figures.
+// no display. The leaves are drawn as the viewer draws them (the leaf model simplified to 1 % of
+// its length, scene_renderer.h) and as the authors' mesh (authors_mesh:1), to show what that buys.
+// docs/benchmarks.md, "Viewer and renderer", keeps the figures.
 //
 //   build-bench/bin/bench_viewer --benchmark_counters_tabular=true
 
@@ -34,6 +36,7 @@ void BM_ViewerFrameTree02(benchmark::State& state) {
   static std::unique_ptr<ScopedXvfb> xvfb;
   if (!HasDisplay() && !xvfb) xvfb = std::make_unique<ScopedXvfb>(1280, 800);
   const bool leaves = state.range(0) != 0;
+  const bool authors_mesh = state.range(1) != 0;  // the leaf model as shipped, not simplified
   Tree tree = ReadTreeFile(kTree02);
   FillMissingMaterials(tree);
   FoliageSource foliage;
@@ -45,6 +48,10 @@ void BM_ViewerFrameTree02(benchmark::State& state) {
   options.height = 800;
   options.fixed_step = true;
   options.fps = 30.0;
+  if (authors_mesh) {
+    options.scene.leaf_detail.tolerance = 0.0;
+    options.scene.petiole_sides = 4;
+  }
   options.dynamics.wind.enabled = true;
   options.dynamics.wind.mean_speed_mps = 5.0;
   PullSchedule pull;
@@ -71,9 +78,10 @@ void BM_ViewerFrameTree02(benchmark::State& state) {
   state.SetLabel(stats.renderer);
 }
 BENCHMARK(BM_ViewerFrameTree02)
-    ->ArgName("leaves")
-    ->Arg(1)
-    ->Arg(0)
+    ->ArgNames({"leaves", "authors_mesh"})
+    ->Args({1, 0})
+    ->Args({1, 1})
+    ->Args({0, 0})
     ->Iterations(200)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();

@@ -179,7 +179,7 @@ void SceneRenderer::Impl::BuildBranches() {
 
 void SceneRenderer::Impl::BuildLeaves(const LeafAssets& assets,
                                       const std::vector<LeafInstance>& leaves) {
-  const LeafModel& model = assets.model;
+  const LeafModel model = SimplifyLeafModel(assets.model, options.leaf_detail).model;
   // The blade.
   std::vector<LeafVertex> blade_vertices;
   const std::vector<Eigen::Vector3f> normals = BladeNormals(model);
@@ -208,7 +208,8 @@ void SceneRenderer::Impl::BuildLeaves(const LeafAssets& assets,
       radii.push_back(model.petiole_radii[i]);
     }
     AppendTube(centers, radii, Eigen::Vector3d::UnitZ(), 0,
-               {.sides = 4, .caps = false, .min_radius = 1e-4}, tube);
+               {.sides = std::max(3, options.petiole_sides), .caps = false, .min_radius = 1e-4},
+               tube);
     const float length = std::max(1e-6f, tube.uvs.back().y());
     for (size_t i = 0; i < tube.vertex_count(); ++i) {
       LeafVertex v{};

@@ -19,6 +19,7 @@
 #include "simtree/viewer/camera.h"
 #include "simtree/viewer/foliage.h"
 #include "simtree/viewer/leaf_model.h"
+#include "simtree/viewer/leaf_simplify.h"
 
 namespace simtree {
 
@@ -41,6 +42,11 @@ struct SceneOptions {
   TubeMeshOptions tube = {.sides = 8, .caps = true, .min_radius = 1e-3};
   double bark_metres = 0.6;  // the bark texture repeats along this length of branch
   double grid_spacing_m = 0.5;
+  // The leaf model drawn: simplified to within 1 % of its length (tolerance 0: the authors' mesh).
+  // Leaves are a few tens of pixels long in a view of the whole tree, where their triangles were
+  // most of a software rasteriser's frame.
+  LeafSimplifyOptions leaf_detail;
+  int petiole_sides = 3;  // a petiole is a pixel or two wide
 };
 
 class SceneRenderer {
