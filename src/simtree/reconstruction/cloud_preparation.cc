@@ -92,8 +92,8 @@ PreparedCloud PrepareCloud(std::span<const Eigen::Vector3d> points, const std::s
     throw InputError(source, "", "no point has finite coordinates (all NaN or infinite)");
   }
   if (out.dropped_non_finite > 0) {
-    warn(fmt::format("dropped {} points with NaN or infinite coordinates (the first is point {})",
-                     out.dropped_non_finite, first_bad));
+    warn(fmt::format("dropped {} point{} with NaN or infinite coordinates (the first is point {})",
+                     out.dropped_non_finite, out.dropped_non_finite == 1 ? "" : "s", first_bad));
   }
 
   const std::vector<char> duplicate = DuplicateFlags(out.points, options.duplicate_tolerance_m);

@@ -253,7 +253,7 @@ ReconstructionResult ReconstructTree(std::span<const Eigen::Vector3d> points,
   SmoothSkeleton(skeleton, options.smoothing);
   // Radii, anchored on the trunk cylinder at the middle of its stretch (on the heaviest path
   // from the root: the trunk), refined by local fits that also recentre the nodes they measure.
-  const std::vector<int> trunk_path = HeaviestPath(skeleton);
+  std::vector<int> trunk_path = HeaviestPath(skeleton);
   int anchor = 0;
   double anchor_radius = 0.0;
   if (result.trunk.found) {
@@ -277,6 +277,13 @@ ReconstructionResult ReconstructTree(std::span<const Eigen::Vector3d> points,
   }
   AssignRadii(skeleton, anchor, anchor_radius, std::max(base_spread, 0.01), reached,
               result.measured.roughness_m, options.radii, &result.radii);
+  if (options.prune) {
+    TwigPruningStats inside;
+    skeleton = PruneTwigsInsideWood(skeleton, 0.6, 3, &inside);
+    result.pruning.twigs_removed += inside.twigs_removed;
+    result.pruning.nodes_removed += inside.nodes_removed;
+    trunk_path = HeaviestPath(skeleton);  // node ids changed
+  }
   // The fitted stretch of the trunk goes (back) onto the cylinder's axis, the better measurement.
   if (options.snap_trunk_to_cylinder && result.trunk.found) {
     const Cylinder& c = result.trunk.cylinder;

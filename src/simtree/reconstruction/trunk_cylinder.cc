@@ -259,7 +259,9 @@ TrunkFit FitTrunkCylinder(std::span<const Eigen::Vector3d> points, double base_h
     // Slices along the axis: a circle per slice from the points near the surface.
     fit.slices.clear();
     const int slices = std::max(options.slices, 1);
-    const double near = std::max(3.0 * options.inlier_threshold_m, 0.5 * c.radius);
+    // Everything within a radius of the surface: a fork or a low branch must show, not only what
+    // already fits.
+    const double near = std::max(3.0 * options.inlier_threshold_m, c.radius);
     std::vector<std::vector<Eigen::Vector3d>> slice_points(slices);
     for (const Eigen::Vector3d& p : kept) {
       const double t = c.AxisCoordinate(p) - t_base;

@@ -26,4 +26,10 @@ struct TwigPruningStats {
 Skeleton PruneTwigs(const Skeleton& skeleton, const TwigPruningOptions& options,
                     TwigPruningStats* stats = nullptr);
 
+// Once radii are known: removes twigs that run mostly inside other wood (more than `inside_share`
+// of their nodes within the radius of the nearest node of another chain). Arcs of a thick branch
+// that occlusion split off grow such twigs along the inside of its bark.
+Skeleton PruneTwigsInsideWood(const Skeleton& skeleton, double inside_share = 0.6, int passes = 3,
+                              TwigPruningStats* stats = nullptr);
+
 }  // namespace simtree
