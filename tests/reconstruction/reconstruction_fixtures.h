@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 
 #include "simtree/core/units.h"
+#include "simtree/reconstruction/local_geometry.h"
 #include "simtree/reconstruction/skeleton.h"
 
 namespace simtree::test {
@@ -24,10 +25,8 @@ inline std::vector<Eigen::Vector3d> CylinderPoints(const Eigen::Vector3d& base,
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> gauss(0.0, 1.0);
   const Eigen::Vector3d a = axis.normalized();
-  const Eigen::Vector3d helper =
-      std::abs(a.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-  const Eigen::Vector3d e1 = a.cross(helper).normalized();
-  const Eigen::Vector3d e2 = a.cross(e1);
+  Eigen::Vector3d e1, e2;
+  PlaneBasis(a, &e1, &e2);
   const int along = std::max(2, static_cast<int>(length / spacing));
   const int around = std::max(6, static_cast<int>(kTwoPi * radius / spacing));
   std::vector<Eigen::Vector3d> points;

@@ -9,6 +9,7 @@
 
 #include "simtree/core/frames.h"
 #include "simtree/core/units.h"
+#include "simtree/reconstruction/local_geometry.h"
 
 namespace simtree::test {
 namespace {
@@ -134,10 +135,8 @@ StandInScan ScanLikeAKinect(const Tree& tree, const StandInScanOptions& options)
         const double r_mid = 0.5 * (n0.radius + n1.radius);
         if (2.0 * r_mid / pixel < options.min_diameter_px) continue;  // too thin to see
         const double step = 0.5 * pixel;
-        const Eigen::Vector3d helper =
-            std::abs(a.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-        const Eigen::Vector3d e1 = a.cross(helper).normalized();
-        const Eigen::Vector3d e2 = a.cross(e1);
+        Eigen::Vector3d e1, e2;
+        PlaneBasis(a, &e1, &e2);
         const int along = std::max(1, static_cast<int>(std::ceil(length / step)));
         const int around = std::max(
             6, static_cast<int>(std::ceil(kTwoPi * std::max(n0.radius, n1.radius) / step)));
@@ -233,10 +232,8 @@ Tree MakeStandInTree(uint64_t seed) {
     return tree.size() - 1;
   };
   auto child_direction = [&](const Eigen::Vector3d& axis, double azimuth, double elevation) {
-    const Eigen::Vector3d helper =
-        std::abs(axis.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-    const Eigen::Vector3d e1 = axis.cross(helper).normalized();
-    const Eigen::Vector3d e2 = axis.cross(e1);
+    Eigen::Vector3d e1, e2;
+    PlaneBasis(axis, &e1, &e2);
     return (std::cos(elevation) * axis +
             std::sin(elevation) * (std::cos(azimuth) * e1 + std::sin(azimuth) * e2))
         .normalized();

@@ -112,6 +112,14 @@ class SkeletonSamples {
 
 double Ratio(int a, int b) { return b > 0 ? static_cast<double>(a) / b : 0.0; }
 
+// The branch of the other tree most of a branch's length lies along (-1 when none).
+int MostAlong(const std::map<int, double>& along) {
+  if (along.empty()) return -1;
+  return std::max_element(along.begin(), along.end(),
+                          [](const auto& a, const auto& b) { return a.second < b.second; })
+      ->first;
+}
+
 }  // namespace
 
 TruthScores ScoreAgainstTruth(const Tree& reconstruction, const Tree& truth,
@@ -170,12 +178,7 @@ TruthScores ScoreAgainstTruth(const Tree& reconstruction, const Tree& truth,
   for (BranchMatch& m : scores.truth) {
     m.near_share = total_length[m.branch] > 0 ? near_length[m.branch] / total_length[m.branch] : 0;
     m.found = m.near_share > options.found_share;
-    const auto& along = along_truth[m.branch];
-    if (!along.empty()) {
-      m.matched = std::max_element(along.begin(), along.end(), [](const auto& a, const auto& b) {
-                    return a.second < b.second;
-                  })->first;
-    }
+    m.matched = MostAlong(along_truth[m.branch]);
     if (!m.scored) continue;
     ++scores.true_branches;
     scores.found += m.found;
@@ -202,12 +205,7 @@ TruthScores ScoreAgainstTruth(const Tree& reconstruction, const Tree& truth,
   for (BranchMatch& m : scores.reconstruction) {
     m.near_share = rec_total[m.branch] > 0 ? rec_near[m.branch] / rec_total[m.branch] : 0.0;
     m.found = m.near_share > options.found_share;
-    const auto& along = along_rec[m.branch];
-    if (!along.empty()) {
-      m.matched = std::max_element(along.begin(), along.end(), [](const auto& a, const auto& b) {
-                    return a.second < b.second;
-                  })->first;
-    }
+    m.matched = MostAlong(along_rec[m.branch]);
     // Not scored: correct, but along true wood thinner than the scored radius.
     m.scored = !(m.found && m.matched >= 0 && !scored_truth(m.matched));
     if (!m.scored) continue;

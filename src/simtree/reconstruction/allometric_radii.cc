@@ -7,6 +7,7 @@
 #include <Eigen/Geometry>
 
 #include "simtree/core/units.h"
+#include "simtree/reconstruction/local_geometry.h"
 #include "simtree/reconstruction/point_index.h"
 #include "simtree/reconstruction/trunk_cylinder.h"
 
@@ -34,10 +35,8 @@ LocalFit FitAcross(const Eigen::Vector3d& node, const Eigen::Vector3d& tangent,
   LocalFit fit;
   if (static_cast<int>(points.size()) < options.fit_min_points) return fit;
   if (!FitCircle(points, node, tangent, &fit.centre, &fit.radius)) return fit;
-  const Eigen::Vector3d helper =
-      std::abs(tangent.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-  const Eigen::Vector3d e1 = tangent.cross(helper).normalized();
-  const Eigen::Vector3d e2 = tangent.cross(e1);
+  Eigen::Vector3d e1, e2;
+  PlaneBasis(tangent, &e1, &e2);
   std::vector<double> angles;
   double residual2 = 0.0;
   for (const Eigen::Vector3d& p : points) {

@@ -7,6 +7,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "simtree/reconstruction/local_geometry.h"
 #include "simtree/reconstruction/point_index.h"
 
 namespace simtree {
@@ -62,12 +63,8 @@ CloudScale MeasureCloudScale(std::span<const Eigen::Vector3d> all_points,
     spacing.push_back(std::sqrt(d2[1]));  // d2[0] is the point itself
     if (near.size() > 6) neighbourhood.push_back(std::sqrt(d2[6]));
     if (static_cast<int>(near.size()) < k) continue;
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (const int j : near) mean += points[j];
-    mean /= near.size();
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const int j : near) cov += (points[j] - mean) * (points[j] - mean).transpose();
-    cov /= near.size();
+    Eigen::Vector3d mean;
+    const Eigen::Matrix3d cov = NeighbourhoodCovariance(points, near, &mean);
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov, Eigen::EigenvaluesOnly);
     roughness.push_back(std::sqrt(std::max(eig.eigenvalues()[0], 0.0)));
   }

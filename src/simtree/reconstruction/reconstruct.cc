@@ -187,6 +187,7 @@ ReconstructionResult ReconstructTree(std::span<const Eigen::Vector3d> points,
   if (options.medial_samples) {
     GeodesicSampleOptions sample_options;
     sample_options.band_width_m = scale.band_width_m;
+    sample_options.merge_per_spread = options.merge_per_spread;
     const GeodesicSampling sampling = SampleGeodesicBands(working, graph, field, sample_options);
     result.unreached_points = sampling.unreached_points;
     attraction.reserve(sampling.samples.size());
@@ -290,7 +291,8 @@ ReconstructionResult ReconstructTree(std::span<const Eigen::Vector3d> points,
     for (const int i : trunk_path) {
       SkeletonNode& node = skeleton.nodes[i];
       const double t = (node.position - result.trunk.base).dot(c.axis);
-      if (t >= 0 && t <= result.trunk.length_m && c.AxisDistance(node.position) < 0.5 * c.radius) {
+      // Within the stretch the slices vouch for (no fork in it) the heaviest path is the trunk.
+      if (t >= 0 && t <= result.trunk.length_m && c.AxisDistance(node.position) < 1.5 * c.radius) {
         node.position = result.trunk.base + t * c.axis;
       }
     }

@@ -62,14 +62,17 @@ struct ReconstructionOptions {
   double trunk_fit_max_m = 1.3;
   // Attraction points: medial samples of geodesic bands (true) or the working points themselves.
   bool medial_samples = true;
+  // Arcs of one band merged into rings (geodesic_samples.h); 0 turns merging off.
+  double merge_per_spread = 0.9;
   // Colonization; its step, radii and gap are overwritten by `scale`.
   ColonizationOptions colonization;
   bool prune = true;
   TwigPruningOptions pruning;
   SkeletonSmoothingOptions smoothing;
   bool snap_trunk_to_cylinder = true;  // trunk nodes within the fitted stretch onto its axis
-  // Anchor the radii on the median slice radius (true) or on the MSAC cylinder's radius.
-  bool anchor_on_slices = true;
+  // Anchor the radii on the MSAC cylinder's radius (the paper's, default) or on the median radius
+  // of the slice circles (true).
+  bool anchor_on_slices = false;
   RadiusOptions radii;
   BranchDecompositionOptions branches;
   uint64_t seed = 1;

@@ -8,7 +8,7 @@
 namespace simtree {
 
 struct SkeletonSmoothingOptions {
-  int iterations = 4;   // 0: off
+  int iterations = 2;   // 0: off
   double weight = 0.5;  // how far a node moves towards the mean of its two neighbours per round
 };
 

@@ -52,8 +52,10 @@ struct ColonizationOptions {
   double kill_per_node_thickness = 0.9;
   // Half-angle of the perception cone around a node's growth direction (pi or more: no cone).
   double perception_half_angle_rad = 1.4;
-  // Share of a tip's previous direction kept in its next step (0: none).
-  double direction_smoothing = 0.3;
+  // Share of a tip's previous direction kept in its next step (0: none). Off by default: with
+  // recentring and skeleton smoothing after growth it changed nothing measurable
+  // (docs/reconstruction.md).
+  double direction_smoothing = 0.0;
   // Geodesic consistency: a node at geodesic g perceives a point at geodesic g' and distance d
   // only when -slack <= g' - g <= ratio d + slack. Off when `geodesic_slack_m` < 0 or the points
   // carry no geodesic.

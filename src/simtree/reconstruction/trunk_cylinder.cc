@@ -7,18 +7,11 @@
 #include <fmt/format.h>
 #include <Eigen/Dense>
 
+#include "simtree/reconstruction/local_geometry.h"
 #include "simtree/reconstruction/point_index.h"
 
 namespace simtree {
 namespace {
-
-// Two unit vectors spanning the plane normal to `axis`.
-void PlaneBasis(const Eigen::Vector3d& axis, Eigen::Vector3d* e1, Eigen::Vector3d* e2) {
-  const Eigen::Vector3d helper =
-      std::abs(axis.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-  *e1 = axis.cross(helper).normalized();
-  *e2 = axis.cross(*e1);
-}
 
 std::vector<Eigen::Vector3d> EstimateNormals(std::span<const Eigen::Vector3d> points,
                                              int neighbours) {
@@ -29,12 +22,9 @@ std::vector<Eigen::Vector3d> EstimateNormals(std::span<const Eigen::Vector3d> po
   for (size_t i = 0; i < points.size(); ++i) {
     index.Nearest(points[i], neighbours, near, d2);
     if (near.size() < 3) continue;
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (const int j : near) mean += points[j];
-    mean /= near.size();
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (const int j : near) cov += (points[j] - mean) * (points[j] - mean).transpose();
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+    Eigen::Vector3d mean;
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(
+        NeighbourhoodCovariance(points, near, &mean));
     normals[i] = eig.eigenvectors().col(0);
   }
   return normals;
