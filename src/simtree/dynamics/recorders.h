@@ -1,7 +1,7 @@
 #pragma once
 // What a simulation run writes, one recorder per output (docs/formats.md describes each file):
 //   NodeFrameWriter     every node of every frame, compact binary (simtree.node_frames v1)
-//   MarkerTrackWriter   marker positions per frame, the trajectory CSV of CONTRACTS.md section 2
+//   MarkerTrackWriter   marker positions per frame, the trajectory CSV of docs/formats.md
 //                       in the world frame, and the markers.json that lists them
 //   AnimationRecorder   a skinned glTF 2.0 animation of the tube mesh (Blender, three.js)
 

@@ -104,7 +104,10 @@ void EstimateSpectral(const SampledSignal& signal, EstimatorKind kind, double mi
 }
 
 // (c): one joint fit; the dominant mode is the strongest inside the band, each channel's the
-// strongest in that channel.
+// strongest in that channel. "Strongest" is what the paper's dominant frequency means: the highest
+// peak of the record's spectrum, which for a decaying mode is its amplitude times the integral of
+// its envelope over the record, a (1 - e^(-s T)) / s. A stiff twig's mode may start larger than the
+// tree's sway and still die out within a second; the sway then owns the spectrum.
 void EstimateFit(const SampledSignal& signal, double min_hz, double max_hz,
                  const EstimatorOptions& options, SignalEstimate& out) {
   DampedSinusoidFit fit = FitDampedSinusoids(signal, min_hz, max_hz, options);
@@ -135,14 +138,17 @@ void EstimateFit(const SampledSignal& signal, double min_hz, double max_hz,
   auto in_band = [&](const FittedMode& m) {
     return m.frequency_hz >= min_hz && m.frequency_hz <= max_hz;
   };
+  const double record_s = signal.duration_s();
+  auto peak = [&](const FittedMode& m, int channel) {
+    const double a = channel < 0 ? m.amplitude : m.channel_amplitude[channel];
+    const double s = m.decay_rate;
+    return a * (s * record_s > 1e-9 ? (1.0 - std::exp(-s * record_s)) / s : record_s);
+  };
   auto strongest = [&](int channel) -> const FittedMode* {
     const FittedMode* best = nullptr;
     for (const FittedMode& m : fit.modes) {
       if (!in_band(m)) continue;
-      const double a = channel < 0 ? m.amplitude : m.channel_amplitude[channel];
-      const double b =
-          !best ? -1 : (channel < 0 ? best->amplitude : best->channel_amplitude[channel]);
-      if (a > b) best = &m;
+      if (!best || peak(m, channel) > peak(*best, channel)) best = &m;
     }
     return best;
   };

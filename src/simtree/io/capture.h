@@ -1,5 +1,5 @@
 #pragma once
-// The capture folder (CONTRACTS.md §1, docs/formats.md "Capture folder"): what a real RGB-D capture
+// The capture folder (docs/formats.md, "Capture folder"): what a real RGB-D capture
 // or `simtree synth` gives the pipeline.
 //
 //   capture.json                       format, version, sensor, species, notes

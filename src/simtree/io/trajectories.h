@@ -1,5 +1,5 @@
 #pragma once
-// Marker trajectories of a pull test (CONTRACTS.md §2; prose in docs/formats.md). The marker list
+// Marker trajectories of a pull test (docs/formats.md). The marker list
 // markers.json (how markers link into the simplified tree of paper Fig. 8) is read by
 // io/capture.h (ReadMarkersJson).
 //
