@@ -9,16 +9,23 @@
 //                                           whose name contains NAME)
 //   bench_reconstruction --score CLOUD TRUE_TREE [OUT_PNG]
 //                                           reconstructs CLOUD and scores it against TRUE_TREE
-//                                           (synth's merged cloud and gt/tree.json)
+//   bench_reconstruction --synth [--pictures DIR] [--variant NAME] [--verbose] CAPTURE...
+//                                           synth captures: the views merged with the true poses
+//                                           (gt/scan_poses.json), reconstructed, scored against
+//                                           gt/tree.json; one table row per capture and the mean
+//                                           (bench/reconstruction_on_synth.sh makes the captures)
 //   bench_reconstruction --standin TREE NOISE_MM SEED OUT_PNG [VIEWS]
 //                                           one stand-in case (TREE: tree01, tree02 or a number,
 //                                           the seed of a procedural tree), picture and scores
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -26,8 +33,11 @@
 #include <spdlog/spdlog.h>
 
 #include "reconstruction/standin_scan.h"
+#include "simtree/core/error.h"
 #include "simtree/core/tree_file.h"
 #include "simtree/eval/reconstruction_metrics.h"
+#include "simtree/io/capture.h"
+#include "simtree/io/ground_truth.h"
 #include "simtree/io/point_cloud_io.h"
 #include "simtree/reconstruction/reconstruct.h"
 #include "simtree/reconstruction/reconstruction_plot.h"
@@ -47,6 +57,22 @@ Tree TrueTree(const std::string& name) {
   }
   return test::MakeStandInTree(std::stoull(name));
 }
+
+// Means of truth scores over several cases (the length error's mean of magnitudes too).
+struct MeanScores {
+  double recall = 0, precision = 0, distance = 0, thick = 0, radius = 0, trunk = 0;
+  double length = 0, abs_length = 0;
+  void Add(const TruthScores& s, double cases) {
+    recall += s.recall / cases;
+    precision += s.precision / cases;
+    distance += s.mean_skeleton_distance_m / cases;
+    thick += s.thick_skeleton_distance_m / cases;
+    radius += s.radius_error / cases;
+    trunk += s.trunk_radius_error / cases;
+    length += s.length_error / cases;
+    abs_length += std::abs(s.length_error) / cases;
+  }
+};
 
 struct CaseResult {
   TruthScores scores;
@@ -101,25 +127,21 @@ void StandInTables() {
   for (const std::string& name : trees) {
     const Tree truth = TrueTree(name);
     for (const double noise : noises) {
-      double recall = 0, precision = 0, distance = 0, radius = 0, trunk = 0, length = 0, t = 0;
+      MeanScores mean;
+      double t = 0;
       double points = 0;
       const int seeds = 3;
       for (int seed = 1; seed <= seeds; ++seed) {
         const CaseResult r = RunStandIn(truth, noise, seed, {});
-        recall += r.scores.recall / seeds;
-        precision += r.scores.precision / seeds;
-        distance += r.scores.mean_skeleton_distance_m / seeds;
-        radius += r.scores.radius_error / seeds;
-        trunk += r.scores.trunk_radius_error / seeds;
-        length += r.scores.length_error / seeds;
+        mean.Add(r.scores, seeds);
         t += r.seconds / seeds;
         points += static_cast<double>(r.points) / seeds;
       }
       std::printf(
           "| %s | %.0f mm | %d | %.0f | %.3f | %.3f | %.1f mm | %.3f | %.3f | %+.3f | "
           "%.2f s |\n",
-          name.c_str(), noise, seeds, points, recall, precision, 1e3 * distance, radius, trunk,
-          length, t);
+          name.c_str(), noise, seeds, points, mean.recall, mean.precision, 1e3 * mean.distance,
+          mean.radius, mean.trunk, mean.length, t);
       std::fflush(stdout);
     }
   }
@@ -184,8 +206,10 @@ std::vector<Variant> Variants() {
   add("pipe exponent 2.0 (da Vinci)",
       [](ReconstructionOptions& o) { o.radii.pipe_exponent = 2.0; });
   add("pipe exponent 3.0", [](ReconstructionOptions& o) { o.radii.pipe_exponent = 3.0; });
-  add("slice median as trunk anchor (not the MSAC radius)",
-      [](ReconstructionOptions& o) { o.anchor_on_slices = true; });
+  add("MSAC radius as trunk anchor (not the slice median)",
+      [](ReconstructionOptions& o) { o.anchor_on_slices = false; });
+  add("no scene cleanup (sparse returns, objects on the ground)",
+      [](ReconstructionOptions& o) { o.clean_scene = false; });
   add("fixed lengths (not from spacing)", [](ReconstructionOptions& o) {
     // What the derivation gives a typical merged Kinect cloud, used for every cloud.
     o.scale = {.voxel_m = 0.012,
@@ -198,6 +222,14 @@ std::vector<Variant> Variants() {
                .trunk_threshold_m = 0.012};
   });
   return v;
+}
+
+// The options of the first ablation variant whose name contains `name`.
+ReconstructionOptions VariantOptions(const std::string& name) {
+  for (const Variant& v : Variants()) {
+    if (std::string(v.name).find(name) != std::string::npos) return v.options;
+  }
+  throw std::invalid_argument("no variant named like " + name);
 }
 
 void Ablation(const std::string& only) {
@@ -230,29 +262,25 @@ void Ablation(const std::string& only) {
         std::string(v.name) != "all improvements") {
       continue;
     }
-    double recall = 0, precision = 0, distance = 0, radius = 0, trunk = 0, length = 0, t = 0;
+    MeanScores mean;
+    double t = 0;
     for (const Scan& s : scans) {
       const ReconstructionResult r = ReconstructTree(s.points, s.name, v.options);
       const TruthScores sc = ScoreAgainstTruth(r.tree, s.truth);
       const double n = static_cast<double>(scans.size());
-      recall += sc.recall / n;
-      precision += sc.precision / n;
-      distance += sc.mean_skeleton_distance_m / n;
-      radius += sc.radius_error / n;
-      trunk += sc.trunk_radius_error / n;
-      length += std::abs(sc.length_error) / n;
+      mean.Add(sc, n);
       t += r.times.total_s / n;
     }
-    double within = 0, mean = 0;
+    double within = 0, real_mean = 0;
     for (size_t k = 0; k < real.size(); ++k) {
       const ReconstructionResult r = ReconstructTree(real[k].points_, kRealScans[k], v.options);
       const CloudFitScores fit = ScoreAgainstCloud(r.tree, real[k].points_);
       within += fit.share_within / real.size();
-      mean += fit.mean_distance_m / real.size();
+      real_mean += fit.mean_distance_m / real.size();
     }
     std::printf("| %s | %.3f | %.3f | %.1f mm | %.3f | %.3f | %.3f | %.1f%% | %.1f mm | %.2f s |\n",
-                v.name, recall, precision, 1e3 * distance, radius, trunk, length, 100 * within,
-                1e3 * mean, t);
+                v.name, mean.recall, mean.precision, 1e3 * mean.distance, mean.radius, mean.trunk,
+                mean.abs_length, 100 * within, 1e3 * real_mean, t);
     std::fflush(stdout);
   }
 }
@@ -285,6 +313,67 @@ void ScoreSynth(const std::string& cloud_path, const std::string& truth_path,
   std::printf("%s\n%s\ntime %.3f s\n", cloud_path.c_str(), FormatTruthScores(scores).c_str(),
               result.times.total_s);
   if (!picture.empty()) WriteReconstructionPlot(result.tree, cloud.points_, picture);
+}
+
+// Every measured pixel of every scan view, in the world frame of the true camera poses: the cloud a
+// perfect registration would give (registration is scored on its own).
+std::vector<Eigen::Vector3d> MergeViewsWithTruePoses(const std::filesystem::path& capture_root) {
+  const Capture capture = OpenCapture(capture_root);
+  const std::vector<ViewPose> poses = ReadScanPoses(capture_root / "gt" / "scan_poses.json");
+  std::vector<Eigen::Vector3d> points;
+  for (const ScanView& view : capture.views) {
+    const auto pose = std::find_if(poses.begin(), poses.end(),
+                                   [&](const ViewPose& p) { return p.name == view.name; });
+    if (pose == poses.end()) {
+      throw InputError((capture_root / "gt" / "scan_poses.json").string(), view.name,
+                       "a pose for every view in scans/");
+    }
+    const RgbdImage image = LoadScanView(view);
+    const CameraIntrinsics& k = image.intrinsics;
+    for (int v = 0; v < k.height; ++v) {
+      for (int u = 0; u < k.width; ++u) {
+        const uint16_t depth = image.depth.at(u, v);
+        if (depth == 0) continue;
+        points.push_back(pose->world_from_camera * k.Unproject(u, v, depth * k.depth_scale_m));
+      }
+    }
+  }
+  return points;
+}
+
+void SynthTable(const std::vector<std::string>& captures, const std::string& picture_dir,
+                const ReconstructionOptions& options) {
+  std::printf(
+      "| capture | points | recall | precision | skeleton distance | (true side >= 1 cm only) "
+      "| radius error | trunk radius error | length error | true / found branches >= 1 cm "
+      "| time |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+  MeanScores mean;
+  for (const std::string& root : captures) {
+    const std::vector<Eigen::Vector3d> points = MergeViewsWithTruePoses(root);
+    const Tree truth = ReadTreeFile(std::filesystem::path(root) / "gt" / "tree.json");
+    const std::string name = std::filesystem::path(root).filename().string();
+    const ReconstructionResult result = ReconstructTree(points, name, options);
+    const TruthScores sc = ScoreAgainstTruth(result.tree, truth);
+    std::printf(
+        "| %s | %zu | %.3f | %.3f | %.1f mm | %.1f mm | %.3f | %.3f | %+.3f | %d / %d | %.2f s |\n",
+        name.c_str(), points.size(), sc.recall, sc.precision, 1e3 * sc.mean_skeleton_distance_m,
+        1e3 * sc.thick_skeleton_distance_m, sc.radius_error, sc.trunk_radius_error, sc.length_error,
+        sc.true_branches, sc.found, result.times.total_s);
+    std::fflush(stdout);
+    mean.Add(sc, static_cast<double>(captures.size()));
+    if (!picture_dir.empty()) {
+      ReconstructionPlotOptions plot;
+      plot.title = name + ": views merged with the true poses";
+      plot.caption = {FormatTruthScores(sc).substr(0, 140), FormatTruthScores(sc).substr(140)};
+      WriteReconstructionPlot(result.tree, points, picture_dir + "/" + name + ".png", plot);
+      plot.title = name + ": the true tree";
+      plot.caption = {};
+      WriteReconstructionPlot(truth, points, picture_dir + "/" + name + "_truth.png", plot);
+    }
+  }
+  std::printf("| **mean** | | %.3f | %.3f | %.1f mm | %.1f mm | %.3f | %.3f | %+.3f | | |\n",
+              mean.recall, mean.precision, 1e3 * mean.distance, 1e3 * mean.thick, mean.radius,
+              mean.trunk, mean.length);
 }
 
 void BM_RealScan(benchmark::State& state) {
@@ -338,6 +427,24 @@ int main(int argc, char** argv) {
     }
     if (std::strcmp(argv[i], "--score") == 0 && i + 2 < argc) {
       simtree::ScoreSynth(argv[i + 1], argv[i + 2], i + 3 < argc ? argv[i + 3] : "");
+      return 0;
+    }
+    if (std::strcmp(argv[i], "--synth") == 0) {
+      std::string pictures;
+      simtree::ReconstructionOptions options;
+      std::vector<std::string> captures;
+      for (int j = i + 1; j < argc; ++j) {
+        if (std::strcmp(argv[j], "--pictures") == 0 && j + 1 < argc) {
+          pictures = argv[++j];
+        } else if (std::strcmp(argv[j], "--variant") == 0 && j + 1 < argc) {
+          options = simtree::VariantOptions(argv[++j]);
+        } else if (std::strcmp(argv[j], "--verbose") == 0) {
+          spdlog::set_level(spdlog::level::debug);
+        } else {
+          captures.push_back(argv[j]);
+        }
+      }
+      simtree::SynthTable(captures, pictures, options);
       return 0;
     }
     if (std::strcmp(argv[i], "--standin") == 0 && i + 4 < argc) {

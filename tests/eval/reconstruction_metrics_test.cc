@@ -122,5 +122,15 @@ TEST(ReconstructionMetrics, EmptyTreesScoreZeroWithoutCrashing) {
   EXPECT_EQ(fit.branches, 0);
 }
 
+TEST(ReconstructionMetrics, MissedThinEndsCountOnlyInTheFullSkeletonDistance) {
+  const Tree truth = Truth();
+  Tree reconstruction = truth;
+  // Branch 2 tapers from 1.5 to 0.5 cm: drop its end thinner than 1 cm (what a camera misses).
+  reconstruction.branches[2].nodes.resize(5);
+  const TruthScores scores = ScoreAgainstTruth(reconstruction, truth);
+  EXPECT_LT(scores.thick_skeleton_distance_m, 0.001);
+  EXPECT_GT(scores.mean_skeleton_distance_m, 0.002);
+}
+
 }  // namespace
 }  // namespace simtree

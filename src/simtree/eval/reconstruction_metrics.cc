@@ -156,6 +156,7 @@ TruthScores ScoreAgainstTruth(const Tree& reconstruction, const Tree& truth,
   std::vector<double> near_length(truth.size(), 0.0), total_length(truth.size(), 0.0);
   std::vector<std::map<int, double>> along_truth(truth.size());
   double sum_distance = 0.0, sum_weight = 0.0, radius_error = 0.0, radius_weight = 0.0;
+  double thick_distance = 0.0, thick_weight = 0.0;
   for (const auto& s : tru.samples()) {
     const auto nearest = rec.NearestAxis(s.position);
     total_length[s.branch] += s.length;
@@ -168,12 +169,17 @@ TruthScores ScoreAgainstTruth(const Tree& reconstruction, const Tree& truth,
     if (!scored_truth(s.branch)) continue;
     sum_distance += s.length * nearest.distance;
     sum_weight += s.length;
+    if (s.radius >= options.min_true_radius_m) {
+      thick_distance += s.length * nearest.distance;
+      thick_weight += s.length;
+    }
     if (near && s.radius > 0) {
       radius_error += s.length * std::abs(nearest.radius - s.radius) / s.radius;
       radius_weight += s.length;
     }
   }
   scores.truth_to_reconstruction_m = sum_weight > 0 ? sum_distance / sum_weight : 0.0;
+  scores.thick_truth_to_reconstruction_m = thick_weight > 0 ? thick_distance / thick_weight : 0.0;
   scores.radius_error = radius_weight > 0 ? radius_error / radius_weight : 0.0;
   for (BranchMatch& m : scores.truth) {
     m.near_share = total_length[m.branch] > 0 ? near_length[m.branch] / total_length[m.branch] : 0;
@@ -215,6 +221,8 @@ TruthScores ScoreAgainstTruth(const Tree& reconstruction, const Tree& truth,
   scores.precision = Ratio(scores.correct, scores.reconstructed_branches);
   scores.mean_skeleton_distance_m =
       0.5 * (scores.reconstruction_to_truth_m + scores.truth_to_reconstruction_m);
+  scores.thick_skeleton_distance_m =
+      0.5 * (scores.reconstruction_to_truth_m + scores.thick_truth_to_reconstruction_m);
   scores.length_error = scores.true_length_m > 0
                             ? (scores.length_m - scores.true_length_m) / scores.true_length_m
                             : 0.0;

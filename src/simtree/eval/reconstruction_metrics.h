@@ -10,7 +10,8 @@
 //    branches thinner than min_true_radius_m are not scored (finding a thin branch is not an
 //    error, and missing one is not counted either);
 //  - mean skeleton distance: the mean of (reconstructed skeleton to true skeleton) and (true
-//    skeleton of scored branches to reconstructed skeleton), each a mean over 1 cm samples;
+//    skeleton of scored branches to reconstructed skeleton), each a mean over 1 cm samples; also
+//    with the true side over wood >= min_true_radius_m only (thick_skeleton_distance_m);
 //  - radius error: mean |r - r_true| / r_true over samples of found scored branches, r from the
 //    nearest reconstructed skeleton sample;
 //  - trunk radius error: |mean reconstructed / mean true trunk radius - 1| over the lowest
@@ -57,6 +58,10 @@ struct TruthScores {
   double precision = 0.0;
   double reconstruction_to_truth_m = 0.0, truth_to_reconstruction_m = 0.0;
   double mean_skeleton_distance_m = 0.0;
+  // The same with the true side only over wood at least min_true_radius_m thick: the thin ends
+  // of scored branches, which a camera may not resolve at all, left out.
+  double thick_truth_to_reconstruction_m = 0.0;
+  double thick_skeleton_distance_m = 0.0;
   double radius_error = 0.0;
   double trunk_radius_m = 0.0, true_trunk_radius_m = 0.0, trunk_radius_error = 0.0;
   double length_m = 0.0, true_length_m = 0.0, length_error = 0.0;  // wood >= min radius

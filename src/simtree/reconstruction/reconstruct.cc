@@ -69,12 +69,50 @@ ReconstructionResult ReconstructTree(std::span<const Eigen::Vector3d> points,
   };
   result.times.prepare_s = lap.Lap();
 
-  // Scale: measured on the input, then the working voxels.
+  // Scale: measured on the input. A scene cloud (a merged Kinect capture) is mostly ground: the
+  // ground goes first, on every point, so that it decides neither the spacing nor the working
+  // voxels, and the scale is measured again on what stands on it.
   result.measured = MeasureCloudScale(prepared.points, {.seed = options.seed});
   ReconstructionScale scale = DeriveScale(result.measured, options.scale);
+  std::vector<Eigen::Vector3d> above_ground;
+  std::span<const Eigen::Vector3d> tree_points = prepared.points;
+  if (options.remove_ground) {
+    GroundOptions ground_options = options.ground;
+    ground_options.tolerance_m = std::max(ground_options.tolerance_m, scale.trunk_threshold_m);
+    ground_options.seed = options.seed;
+    result.ground = FindGroundPlane(prepared.points, ground_options);
+    spdlog::debug(
+        "ground: {} ({} points up to {:.3f} m, plane {:.2f} m wide, {:.2f} m standing on it, "
+        "{:.0f}% covered)",
+        result.ground.found ? "found" : "none", result.ground.ground_points,
+        result.ground.clearance_m, result.ground.plane_width_m, result.ground.standing_width_m,
+        100 * result.ground.covered_share);
+    if (result.ground.found) {
+      above_ground.reserve(prepared.points.size() - result.ground.ground_points);
+      for (size_t i = 0; i < prepared.points.size(); ++i) {
+        if (!result.ground.is_ground[i]) above_ground.push_back(prepared.points[i]);
+      }
+      if (options.clean_scene) {
+        // Sparse returns: fewer neighbours than a surface seen at the measured spacing has.
+        SparseReturnOptions sparse_options;
+        sparse_options.radius_m = std::max(4.0 * result.measured.spacing_m, 0.01);
+        const std::vector<char> sparse = FindSparseReturns(above_ground, sparse_options);
+        std::erase_if(above_ground, [&](const Eigen::Vector3d& p) {
+          return sparse[&p - above_ground.data()] != 0;
+        });
+        result.scene_sparse_removed =
+            static_cast<size_t>(std::count(sparse.begin(), sparse.end(), 1));
+      }
+      tree_points = above_ground;
+      if (above_ground.size() >= 10) {
+        result.measured = MeasureCloudScale(above_ground, {.seed = options.seed});
+        scale = DeriveScale(result.measured, options.scale);
+      }
+    }
+  }
   double voxel = scale.voxel_m;
   std::vector<Eigen::Vector3d> working =
-      VoxelAverageAtMost(prepared.points, options.max_working_points, &voxel);
+      VoxelAverageAtMost(tree_points, options.max_working_points, &voxel);
   if (voxel > scale.voxel_m * 1.001) {
     ReconstructionScale given = options.scale;
     given.voxel_m = voxel;
@@ -88,20 +126,20 @@ ReconstructionResult ReconstructTree(std::span<const Eigen::Vector3d> points,
       scale.neighbour_radius_m, scale.band_width_m, scale.step_m, scale.influence_radius_m,
       scale.kill_radius_m, scale.max_gap_m, scale.trunk_threshold_m);
   result.times.scale_s = lap.Lap();
-
-  // Ground, removed from the working points when found.
-  if (options.remove_ground) {
-    GroundOptions ground_options = options.ground;
-    ground_options.tolerance_m = std::max(ground_options.tolerance_m, scale.trunk_threshold_m);
-    ground_options.seed = options.seed;
-    result.ground = FindGroundPlane(working, ground_options);
-    if (result.ground.found) {
-      std::vector<Eigen::Vector3d> kept;
-      for (size_t i = 0; i < working.size(); ++i) {
-        if (!result.ground.is_ground[i]) kept.push_back(working[i]);
-      }
-      working = std::move(kept);
+  if (result.ground.found && options.clean_scene) {
+    GroundObjectOptions object_options;
+    object_options.neighbour_radius_m = scale.neighbour_radius_m;
+    object_options.touch_height_m = scale.band_width_m;
+    const std::vector<char> object = FindObjectsOnGround(working, result.ground, object_options);
+    std::vector<Eigen::Vector3d> kept;
+    kept.reserve(working.size());
+    for (size_t i = 0; i < working.size(); ++i) {
+      if (!object[i]) kept.push_back(working[i]);
     }
+    result.scene_object_points_removed = working.size() - kept.size();
+    working = std::move(kept);
+    spdlog::debug("scene: {} sparse returns and {} working points of objects on the ground removed",
+                  result.scene_sparse_removed, result.scene_object_points_removed);
   }
   result.working_points = working.size();
   if (working.size() < 10) {
