@@ -1,0 +1,147 @@
+// The whole reconstruction on a stand-in Kinect scan of a small procedural tree (scored against
+// it), and every kind of bad input.
+
+#include "simtree/reconstruction/reconstruct.h"
+
+#include <limits>
+#include <random>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "reconstruction/reconstruction_fixtures.h"
+#include "reconstruction/standin_scan.h"
+#include "simtree/core/error.h"
+#include "simtree/core/validate.h"
+#include "simtree/eval/reconstruction_metrics.h"
+
+namespace simtree {
+namespace {
+
+using ::testing::HasSubstr;
+
+struct Case {
+  Tree truth;
+  std::vector<Eigen::Vector3d> points;
+};
+
+// Ten views around a small procedural tree: what synth's merged clouds look like.
+const Case& StandIn() {
+  static const Case c = [] {
+    Case out;
+    out.truth = test::MakeStandInTree(2);
+    out.points = test::ScanLikeAKinect(out.truth).points;
+    return out;
+  }();
+  return c;
+}
+
+std::string MessageOf(const std::vector<Eigen::Vector3d>& points) {
+  try {
+    ReconstructTree(points, "cloud.ply");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Reconstruct, AStandInScanGivesTheTreeItCameFrom) {
+  const ReconstructionResult r = ReconstructTree(StandIn().points, "stand-in");
+  EXPECT_TRUE(FindProblems(r.tree).empty());
+  EXPECT_EQ(r.tree.metadata.source, "reconstructed from stand-in");
+  ASSERT_TRUE(r.trunk.found) << r.trunk.note;
+  const TruthScores s = ScoreAgainstTruth(r.tree, StandIn().truth);
+  EXPECT_GE(s.recall, 0.9) << FormatTruthScores(s);
+  EXPECT_GE(s.precision, 0.9) << FormatTruthScores(s);
+  EXPECT_LE(s.mean_skeleton_distance_m, 0.015) << FormatTruthScores(s);
+  EXPECT_LE(s.trunk_radius_error, 0.1) << FormatTruthScores(s);
+  EXPECT_LE(std::abs(s.length_error), 0.15) << FormatTruthScores(s);
+  // The parameters came from the cloud.
+  EXPECT_GT(r.measured.spacing_m, 0.001);
+  EXPECT_GT(r.parameters.step_m, 0.0);
+  EXPECT_GE(r.parameters.band_width_m, 0.015);
+  EXPECT_GT(r.times.total_s, 0.0);
+}
+
+TEST(Reconstruct, IsDeterministic) {
+  const ReconstructionResult a = ReconstructTree(StandIn().points, "a");
+  const ReconstructionResult b = ReconstructTree(StandIn().points, "a");
+  ASSERT_EQ(a.tree.size(), b.tree.size());
+  for (int i = 0; i < a.tree.size(); ++i) {
+    ASSERT_EQ(a.tree.branches[i].nodes.size(), b.tree.branches[i].nodes.size());
+    for (size_t k = 0; k < a.tree.branches[i].nodes.size(); ++k) {
+      EXPECT_EQ(a.tree.branches[i].nodes[k].position, b.tree.branches[i].nodes[k].position);
+      EXPECT_EQ(a.tree.branches[i].nodes[k].radius, b.tree.branches[i].nodes[k].radius);
+    }
+  }
+}
+
+TEST(Reconstruct, NansAndDuplicatesAreDroppedWithWarnings) {
+  auto points = StandIn().points;
+  points.resize(points.size() / 2);
+  const size_t half = points.size();
+  points.insert(points.end(), points.begin(), points.begin() + half / 4);  // duplicates
+  points.push_back({std::numeric_limits<double>::quiet_NaN(), 0, 0});
+  const ReconstructionResult r = ReconstructTree(points, "cloud.ply");
+  EXPECT_TRUE(FindProblems(r.tree).empty());
+  ASSERT_GE(r.warnings.size(), 2u);
+  EXPECT_THAT(r.warnings[0], HasSubstr("NaN"));
+  EXPECT_THAT(r.warnings[1], HasSubstr("duplicated"));
+}
+
+TEST(Reconstruct, BadCloudsGiveClearErrors) {
+  EXPECT_THAT(MessageOf({}), HasSubstr("cloud.ply: the cloud has no points"));
+  auto millimetres = StandIn().points;
+  for (auto& p : millimetres) p *= 1000.0;
+  EXPECT_THAT(MessageOf(millimetres), HasSubstr("millimetres"));
+  std::vector<Eigen::Vector3d> lawn;
+  for (int i = 0; i < 60; ++i) {
+    for (int j = 0; j < 60; ++j) lawn.push_back({0.03 * i, 0.03 * j, 0.0005 * ((i + j) % 3)});
+  }
+  EXPECT_THAT(MessageOf(lawn), HasSubstr("no vertical structure"));
+}
+
+TEST(Reconstruct, DegenerateCloudsNeverCrash) {
+  // A handful of points on a line, a single vertical line, random noise in a box, two far
+  // blobs: each gives a valid tree or a clear InputError.
+  std::vector<std::vector<Eigen::Vector3d>> clouds;
+  clouds.push_back({{0, 0, 0}, {0, 0, 0.5}, {0, 0, 1}});
+  std::vector<Eigen::Vector3d> line;
+  for (int i = 0; i < 200; ++i) line.push_back({0, 0, 0.01 * i});
+  clouds.push_back(line);
+  std::mt19937_64 rng(1);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Eigen::Vector3d> noise;
+  for (int i = 0; i < 3000; ++i) noise.push_back({u(rng), u(rng), 2 * u(rng)});
+  clouds.push_back(noise);
+  auto blobs = test::CylinderPoints({0, 0, 0}, {0, 0, 1}, 1.0, 0.05, 0.01);
+  const auto far = test::CylinderPoints({5, 5, 3}, {0, 0, 1}, 1.0, 0.05, 0.01);
+  blobs.insert(blobs.end(), far.begin(), far.end());
+  clouds.push_back(blobs);
+  for (size_t c = 0; c < clouds.size(); ++c) {
+    try {
+      const ReconstructionResult r = ReconstructTree(clouds[c], "cloud");
+      EXPECT_TRUE(FindProblems(r.tree).empty()) << "cloud " << c;
+    } catch (const InputError& e) {
+      EXPECT_THAT(std::string(e.what()), HasSubstr("cloud")) << "cloud " << c;
+    }
+  }
+}
+
+TEST(Reconstruct, AScannedGroundIsFoundAndLeftOut) {
+  auto points = test::CylinderPoints({0, 0, 0}, {0, 0, 1}, 1.5, 0.08, 0.01, 0.001);
+  for (int i = -40; i <= 40; ++i) {
+    for (int j = -40; j <= 40; ++j) {
+      if (i * i + j * j > 16) points.push_back({0.025 * i, 0.025 * j, 0.0});
+    }
+  }
+  const ReconstructionResult r = ReconstructTree(points, "with ground");
+  EXPECT_TRUE(r.ground.found);
+  ASSERT_TRUE(r.trunk.found);
+  EXPECT_NEAR(r.trunk.cylinder.radius, 0.08, 0.008);
+  EXPECT_EQ(r.tree.size(), 1) << "the ground grew no branches";
+  EXPECT_NEAR(r.tree.trunk().tip().position.z(), 1.5, 0.1);
+}
+
+}  // namespace
+}  // namespace simtree

@@ -1,0 +1,60 @@
+// Long checks (label slow): stand-in Kinect scans of the authors' demo trees scored against them,
+// and the three real laser scans reconstructed into complete trees that fit their points.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "reconstruction/standin_scan.h"
+#include "simtree/core/tree_file.h"
+#include "simtree/core/validate.h"
+#include "simtree/eval/reconstruction_metrics.h"
+#include "simtree/io/point_cloud_io.h"
+#include "simtree/reconstruction/reconstruct.h"
+#include "test_util.h"
+
+namespace simtree {
+namespace {
+
+class AuthorsTree : public ::testing::TestWithParam<std::tuple<const char*, double>> {};
+
+TEST_P(AuthorsTree, StandInScanMeetsTheIssueTargets) {
+  const auto [name, noise_mm] = GetParam();
+  const Tree truth =
+      ReadTreeFile(test::SharedData(std::string("authors-demo/tree_model/") + name + ".txt"));
+  test::StandInScanOptions options;
+  options.noise_at_2m_m = noise_mm * 1e-3;
+  const auto scan = test::ScanLikeAKinect(truth, options);
+  const ReconstructionResult r = ReconstructTree(scan.points, name);
+  const TruthScores s = ScoreAgainstTruth(r.tree, truth);
+  EXPECT_GE(s.recall, 0.9) << FormatTruthScores(s);
+  EXPECT_GE(s.precision, 0.9) << FormatTruthScores(s);
+  EXPECT_LE(s.mean_skeleton_distance_m, 0.015) << FormatTruthScores(s);
+  EXPECT_LE(s.trunk_radius_error, 0.1) << FormatTruthScores(s);
+}
+
+INSTANTIATE_TEST_SUITE_P(Noise, AuthorsTree,
+                         ::testing::Combine(::testing::Values("tree01", "tree02"),
+                                            ::testing::Values(2.0, 3.0)));
+
+class RealScan : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(RealScan, ReconstructsACompleteConnectedTreeThatFitsThePoints) {
+  const auto cloud = ReadPointCloud(test::SharedData(std::string("real-scans/") + GetParam()));
+  const ReconstructionResult r = ReconstructTree(cloud.points_, GetParam());
+  EXPECT_TRUE(FindProblems(r.tree).empty());
+  ASSERT_TRUE(r.trunk.found) << r.trunk.note;
+  // Connected by construction (every branch hangs on its parent); complete: most points are near
+  // the model, and the tree has a real hierarchy.
+  const CloudFitScores fit = ScoreAgainstCloud(r.tree, cloud.points_);
+  EXPECT_GE(fit.share_within, 0.4) << FormatCloudFit(fit);
+  EXPECT_LE(fit.median_distance_m, 0.03) << FormatCloudFit(fit);
+  EXPECT_GE(fit.branches, 30) << FormatCloudFit(fit);
+  ASSERT_GE(fit.branches_by_level.size(), 3u);
+  EXPECT_LE(r.unreached_points, r.working_points / 5);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scans, RealScan,
+                         ::testing::Values("tree1.xyz", "tree7.xyz", "rtwig_cloud.xyz"));
+
+}  // namespace
+}  // namespace simtree

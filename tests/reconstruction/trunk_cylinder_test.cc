@@ -1,0 +1,85 @@
+#include "simtree/reconstruction/trunk_cylinder.h"
+
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "reconstruction/reconstruction_fixtures.h"
+#include "simtree/core/units.h"
+
+namespace simtree {
+namespace {
+
+// A trunk leaning 10 degrees, radius 12 cm, scanned with 3 mm noise, plus 15% stray points.
+std::vector<Eigen::Vector3d> LeaningTrunk(const Eigen::Vector3d& axis) {
+  auto points = test::CylinderPoints({0.3, -0.2, 1.0}, axis, 0.8, 0.12, 0.01, 0.003);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-0.4, 0.4);
+  const size_t strays = points.size() * 15 / 100;
+  for (size_t i = 0; i < strays; ++i) points.push_back({0.3 + u(rng), -0.2 + u(rng), 1.4 + u(rng)});
+  return points;
+}
+
+TEST(TrunkCylinder, MsacFindsRadiusAndAxisDespiteNoiseAndOutliers) {
+  const Eigen::Vector3d axis =
+      Eigen::Vector3d(std::sin(DegToRad(10)), 0, std::cos(DegToRad(10))).normalized();
+  const TrunkFit fit = FitTrunkCylinder(LeaningTrunk(axis), 1.0, {.inlier_threshold_m = 0.008});
+  ASSERT_TRUE(fit.found) << fit.note;
+  EXPECT_NEAR(fit.cylinder.radius, 0.12, 0.12 * 0.03);
+  EXPECT_GT(std::abs(fit.cylinder.axis.dot(axis)), std::cos(DegToRad(2)));
+  EXPECT_NEAR(fit.base.z(), 1.0, 1e-9);
+  EXPECT_LT(fit.cylinder.AxisDistance({0.3, -0.2, 1.0}), 0.01);  // the base is on the axis
+  EXPECT_NEAR(fit.rms_m, 0.003, 0.0015);
+  EXPECT_TRUE(fit.slices_agree);
+  ASSERT_EQ(fit.slices.size(), 5u);
+  for (const TrunkSlice& s : fit.slices) EXPECT_NEAR(s.radius_m, 0.12, 0.012);
+  EXPECT_NEAR(fit.slice_radius_m, 0.12, 0.006);
+}
+
+TEST(TrunkCylinder, AForkAboveShortensTheFitToTheSlicesThatAgree) {
+  // 0.6 m of trunk, then two 7 cm stems side by side (together much wider than the trunk).
+  auto points = test::CylinderPoints({0, 0, 0}, {0, 0, 1}, 0.6, 0.1, 0.01, 0.002);
+  for (const double x : {-0.12, 0.12}) {
+    const auto stem = test::CylinderPoints({x, 0, 0.6}, {0, 0, 1}, 0.4, 0.07, 0.01, 0.002);
+    points.insert(points.end(), stem.begin(), stem.end());
+  }
+  const TrunkFit fit = FitTrunkCylinder(points, 0.0, {.inlier_threshold_m = 0.006});
+  ASSERT_TRUE(fit.found) << fit.note;
+  EXPECT_NEAR(fit.cylinder.radius, 0.1, 0.005);
+  std::string slices;
+  for (const TrunkSlice& sl : fit.slices) {
+    slices += std::to_string(sl.from_m) + ":" + std::to_string(sl.radius_m) + "/" +
+              std::to_string(sl.centre_offset_m) + (sl.agrees ? "+ " : "- ");
+  }
+  EXPECT_LE(fit.length_m, 0.65) << slices;
+  EXPECT_FALSE(fit.note.empty());
+}
+
+TEST(TrunkCylinder, TooFewPointsOrNoCylinderIsSaid) {
+  const std::vector<Eigen::Vector3d> few = {{0, 0, 0}, {0, 0, 1}};
+  const TrunkFit none = FitTrunkCylinder(few, 0.0);
+  EXPECT_FALSE(none.found);
+  EXPECT_NE(none.note.find("too few"), std::string::npos);
+  // A horizontal log is no trunk (beyond the tilt limit).
+  const auto log = test::CylinderPoints({0, 0, 0}, {1, 0, 0}, 1.0, 0.1, 0.01);
+  EXPECT_FALSE(FitTrunkCylinder(log, 0.0).found);
+}
+
+TEST(TrunkCylinder, CircleFitRecoversAPartialArc) {
+  // A quarter... a third of a circle of radius 5 cm around (1, 2) in the plane z = 3.
+  std::vector<Eigen::Vector3d> arc;
+  for (int i = 0; i <= 20; ++i) {
+    const double t = kTwoPi / 3 * i / 20;
+    arc.push_back({1 + 0.05 * std::cos(t), 2 + 0.05 * std::sin(t), 3 + 0.001 * (i % 3)});
+  }
+  Eigen::Vector3d centre;
+  double radius = 0;
+  ASSERT_TRUE(FitCircle(arc, {1, 2, 3}, Eigen::Vector3d::UnitZ(), &centre, &radius));
+  EXPECT_NEAR(radius, 0.05, 1e-6);
+  EXPECT_NEAR((centre - Eigen::Vector3d(1, 2, 3)).head<2>().norm(), 0.0, 1e-6);
+  const std::vector<Eigen::Vector3d> two = {{0, 0, 0}, {1, 0, 0}};
+  EXPECT_FALSE(FitCircle(two, {0, 0, 0}, Eigen::Vector3d::UnitZ(), &centre, &radius));
+}
+
+}  // namespace
+}  // namespace simtree
