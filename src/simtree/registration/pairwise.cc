@@ -28,6 +28,28 @@ double Spacing(const RegistrationView& source, const RegistrationView& target) {
   return std::max(source.spacing_m, target.spacing_m);
 }
 
+// Moves a coarse result (keeping its rotation) so that the trunk axes meet and the grounds
+// coincide: the shift SAC-IA gets from skeleton points is off by what one-sided views bias, the
+// cylinder and the plane are not.
+Eigen::Isometry3d SnapToPriors(Eigen::Isometry3d t, const RegistrationView& source,
+                               const RegistrationView& target,
+                               const std::optional<SharedKeyRegion>& shared) {
+  const bool cylinders =
+      source.trunk && target.trunk && source.trunk->cylinder && target.trunk->cylinder;
+  if (cylinders && shared) {
+    const Eigen::Vector3d d = target.trunk->cylinder->axis;
+    Eigen::Vector3d gap = shared->target.center - t * shared->source.center;
+    gap -= gap.dot(d) * d;  // across the axis only
+    t.translation() += gap;
+  }
+  if (source.ground && target.ground) {
+    Eigen::Vector3d foot = source.trunk ? source.trunk->base : source.cloud->GetCenter();
+    foot -= source.ground->SignedDistance(foot) * source.ground->normal;
+    t.translation() -= target.ground->SignedDistance(t * foot) * target.ground->normal;
+  }
+  return t;
+}
+
 }  // namespace
 
 double CoarseOverlap(const open3d::geometry::PointCloud& source,
@@ -204,6 +226,10 @@ PairResult RegisterPair(const RegistrationView& source, const RegistrationView& 
     result.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
+  }
+  if (options.snap_to_priors) {
+    result.coarse.target_from_source =
+        SnapToPriors(result.coarse.target_from_source, source, target, shared);
   }
   result.target_from_source = result.coarse.target_from_source;
   if (options.run_icp) {

@@ -22,6 +22,8 @@ struct PairOptions {
   bool up_prior = true;
   bool center_prior = true;
   double max_center_offset_share = 0.5;  // of the key region's radius
+  // Shift the coarse result so the trunk cylinders' axes meet and the grounds coincide.
+  bool snap_to_priors = true;
   GatedIcpOptions icp;
   // ICP stage distances in point spacings (replaces icp.max_distances_m when not empty).
   std::vector<double> icp_distance_factors = {6.0, 3.0, 1.5};
@@ -38,17 +40,17 @@ struct PairOptions {
   double match_distance_factor = 1.5;
 
   // Acceptance checks (a failed check flags the pair).
-  double min_fitness = 0.12;             // gated fitness at the last ICP distance
+  double min_fitness = 0.02;             // gated fitness at the last ICP distance
   double max_up_disagreement_deg = 4.0;  // both views' up directions after registration
   double max_ground_offset_m = 0.06;     // both views' ground planes after registration
   double max_trunk_offset_factor = 1.5;  // trunk axes apart, in trunk widths (at least 5 cm)
   double max_trunk_tilt_deg = 10.0;      // trunk axes' directions apart
   // With trunk cylinders on both views, these replace the two above.
-  double max_cylinder_tilt_deg = 3.0;
+  double max_cylinder_tilt_deg = 5.0;
   double max_cylinder_offset_m = 0.025;
   // Share of the source's coarse points (the skeleton) within the SAC-IA inlier distance of the
   // target's, after registration.
-  double min_coarse_overlap = 0.5;
+  double min_coarse_overlap = 0.45;
   // The trunk constraint joins fine registration only when the coarse result puts the trunk
   // cylinders within these of each other.
   double max_trunk_guard_tilt_deg = 6.0;
