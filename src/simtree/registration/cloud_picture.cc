@@ -47,6 +47,22 @@ Bounds PanelBounds(const PicturePanel& panel, const Eigen::Vector3d& across,
 
 }  // namespace
 
+std::array<uint8_t, 3> ViewColor(int index) {
+  static constexpr std::array<std::array<uint8_t, 3>, 12> kPalette = {{{228, 26, 28},
+                                                                       {55, 126, 184},
+                                                                       {77, 175, 74},
+                                                                       {152, 78, 163},
+                                                                       {255, 127, 0},
+                                                                       {166, 86, 40},
+                                                                       {247, 129, 191},
+                                                                       {0, 170, 170},
+                                                                       {120, 120, 120},
+                                                                       {200, 180, 0},
+                                                                       {0, 0, 120},
+                                                                       {120, 0, 0}}};
+  return kPalette[static_cast<size_t>(std::abs(index)) % kPalette.size()];
+}
+
 RgbImage DrawPanels(const std::vector<PicturePanel>& panels, const PictureOptions& options) {
   if (panels.empty()) throw InputError("<memory>", "picture", "expected at least one panel");
   const Eigen::Vector3d depth =
@@ -54,7 +70,8 @@ RgbImage DrawPanels(const std::vector<PicturePanel>& panels, const PictureOption
   const Eigen::Vector3d across = depth.cross(Eigen::Vector3d::UnitZ()) * -1.0;
   const int title_h = 34;
   const int w = options.panel_width;
-  const int height = title_h + options.side_height + options.top_height;
+  const int legend_h = options.legend.empty() ? 0 : 30;
+  const int height = title_h + options.side_height + options.top_height + legend_h;
   cv::Mat canvas(height, w * static_cast<int>(panels.size()), CV_8UC3, cv::Scalar(255, 255, 255));
   const Bounds common = PanelBounds(panels.back(), across, depth);
 
@@ -109,7 +126,19 @@ RgbImage DrawPanels(const std::vector<PicturePanel>& panels, const PictureOption
                 cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(90, 90, 90), 1, cv::LINE_AA);
     cv::line(canvas, cv::Point(x0, title_h + options.side_height),
              cv::Point(x0 + w, title_h + options.side_height), cv::Scalar(200, 200, 200));
-    if (k > 0) cv::line(canvas, cv::Point(x0, 0), cv::Point(x0, height), cv::Scalar(160, 160, 160));
+    if (k > 0) {
+      cv::line(canvas, cv::Point(x0, 0), cv::Point(x0, height - legend_h),
+               cv::Scalar(160, 160, 160));
+    }
+  }
+  int legend_x = 10;
+  for (const auto& [text, color] : options.legend) {
+    const int y = height - legend_h / 2;
+    cv::rectangle(canvas, cv::Point(legend_x, y - 6), cv::Point(legend_x + 12, y + 6),
+                  cv::Scalar(color[2], color[1], color[0]), cv::FILLED);
+    cv::putText(canvas, text, cv::Point(legend_x + 16, y + 5), cv::FONT_HERSHEY_SIMPLEX, 0.45,
+                cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
+    legend_x += 24 + 8 * static_cast<int>(text.size());
   }
   RgbImage image(canvas.cols, canvas.rows);
   for (int y = 0; y < canvas.rows; ++y) {

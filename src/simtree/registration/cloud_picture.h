@@ -5,6 +5,7 @@
 
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -32,7 +33,12 @@ struct PictureOptions {
   Eigen::Vector3d side_direction = Eigen::Vector3d::UnitY();
   // Share the scale and centre of all panels (the last panel's bounds), so they compare.
   bool common_scale = true;
+  // A band under the panels naming the colours.
+  std::vector<std::pair<std::string, std::array<uint8_t, 3>>> legend;
 };
+
+// Distinct colours for up to 12 views (then they repeat).
+std::array<uint8_t, 3> ViewColor(int index);
 
 // Panels side by side: each a side view (x across, z up) over a top view (x across, y up), with
 // its title above. Throws InputError when there are no panels.
