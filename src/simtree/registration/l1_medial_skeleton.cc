@@ -14,16 +14,16 @@ namespace simtree {
 namespace {
 
 // sigma_i of Huang et al.: the largest eigenvalue's share of the theta-weighted covariance of the
-// skeleton points around x_i (1/3 when isotropic, 1 on a line).
-double Directionality(const std::vector<Eigen::Vector3d>& x, size_t i, double h) {
+// skeleton points around x_i (1/3 when isotropic, 1 on a line). `near` are x_i's neighbours
+// within h (x_i itself included or not).
+double Directionality(const std::vector<Eigen::Vector3d>& x, size_t i, const std::vector<int>& near,
+                      double h) {
   const double inv = 1.0 / (0.25 * h * h);
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (size_t k = 0; k < x.size(); ++k) {
-    if (k == i) continue;
+  for (int k : near) {
+    if (static_cast<size_t>(k) == i) continue;
     const Eigen::Vector3d d = x[k] - x[i];
-    const double r2 = d.squaredNorm();
-    if (r2 > h * h) continue;
-    covariance += std::exp(-r2 * inv) * d * d.transpose();
+    covariance += std::exp(-d.squaredNorm() * inv) * d * d.transpose();
   }
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance, Eigen::EigenvaluesOnly);
   const Eigen::Vector3d lambda = solver.eigenvalues().cwiseMax(0.0);
@@ -60,8 +60,15 @@ Skeleton L1MedialSkeleton(const std::vector<Eigen::Vector3d>& input,
     const double inv = 1.0 / (0.25 * h * h);
     for (int iteration = 0; iteration < options.iterations_per_round; ++iteration) {
       ++skeleton.iterations;
+      // The skeleton points' own neighbourhoods, from a tree rebuilt as they move.
+      open3d::geometry::PointCloud x_cloud;
+      x_cloud.points_ = x;
+      const open3d::geometry::KDTreeFlann x_tree(x_cloud);
       oneapi::tbb::parallel_for(size_t{0}, x.size(), [&](size_t i) {
-        sigma[i] = Directionality(x, i, h);
+        std::vector<int> near;
+        std::vector<double> near_squared;
+        x_tree.SearchRadius(x[i], h, near, near_squared);
+        sigma[i] = Directionality(x, i, near, h);
         // Attraction: the theta-weighted L1 median of the input around x_i.
         std::vector<int> neighbours;
         std::vector<double> squared;
@@ -81,11 +88,10 @@ Skeleton L1MedialSkeleton(const std::vector<Eigen::Vector3d>& input,
         // Repulsion from the other skeleton points, along the skeleton.
         Eigen::Vector3d repel = Eigen::Vector3d::Zero();
         double repel_weight = 0.0;
-        for (size_t k = 0; k < x.size(); ++k) {
-          if (k == i) continue;
+        for (int k : near) {
+          if (static_cast<size_t>(k) == i) continue;
           const Eigen::Vector3d d = x[i] - x[k];
           const double r2 = std::max(d.squaredNorm(), 1e-8 * h * h);
-          if (r2 > h * h) continue;
           const double b = std::exp(-r2 * inv) / r2;
           repel += b * d;
           repel_weight += b;

@@ -44,7 +44,11 @@ PointCloud SkeletonCloud(const RegistrationView& view, const std::vector<size_t>
     if (view.trunk) {
       projection.max_shift_m = std::max(0.05, 0.6 * view.trunk->visible_width_m);
     }
-    points = ProjectToMedialAxes(*view.cloud, *view.cloud_tree, indices, projection);
+    // The projected points crowd onto the axes: thin them (the skeleton's cost grows with them).
+    PointCloud projected;
+    projected.points_ = ProjectToMedialAxes(*view.cloud, *view.cloud_tree, indices, projection);
+    points =
+        projected.VoxelDownSample(options.skeleton_input_voxel_factor * view.spacing_m)->points_;
   } else {
     for (size_t i : indices) points.push_back(view.cloud->points_[i]);
   }

@@ -45,6 +45,8 @@ struct RegistrationViewOptions {
   bool medial_projection = true;
   MedialProjectionOptions projection;
   double projection_radius_factor = 4.0;
+  // The projected points are thinned to one per voxel of this many point spacings.
+  double skeleton_input_voxel_factor = 1.0;
   // The skeleton's initial neighbourhood h: this many point spacings (at least 4 cm).
   double skeleton_radius_factor = 4.0;
   // Point inputs (entire tree, key region) are downsampled to this many point spacings first.
