@@ -28,6 +28,7 @@
 #include "simtree/identification/materials_file.h"
 #include "simtree/identification/test_signals.h"
 #include "simtree/io/ground_truth.h"
+#include "simtree/tracking/tracker_error.h"
 
 namespace simtree {
 namespace {
@@ -189,8 +190,8 @@ void BM_IdentifyTree(benchmark::State& state) {
     tree.links.push_back(link);
   }
   std::vector<MarkerLink> markers;
-  const Trajectories t =
-      AddTrackerNoise(MakeMarkerTrajectories(tree, 30, 2, 10, &markers), TrackerNoiseOptions{});
+  const Trajectories t = SimulateTrackerError(MakeMarkerTrajectories(tree, 30, 2, 10, &markers),
+                                              TrackerErrorOptions{});
   IdentifyOptions options;
   options.compare_estimators = state.range(0) != 0;
   for (auto _ : state) benchmark::DoNotOptimize(IdentifyMaterials(t, markers, options));

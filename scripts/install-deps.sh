@@ -17,7 +17,7 @@ packages=(
   # formats, CLI, logging
   nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev libtinygltf-dev
   # viewer and headless rendering
-  libglfw3-dev libgl-dev libimgui-dev libgl1-mesa-dri xvfb xauth
+  libglfw3-dev libgl-dev libegl-dev libegl-mesa0 libimgui-dev libgl1-mesa-dri xvfb xauth
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev python3-open3d python3-jsonschema
 )

@@ -12,10 +12,10 @@
 #include "simtree/identification/marker_assignment.h"
 #include "simtree/identification/materials_file.h"
 #include "simtree/identification/spectrum_plot.h"
-#include "simtree/identification/test_signals.h"
 #include "simtree/io/capture.h"
 #include "simtree/io/ground_truth.h"
 #include "simtree/io/trajectories.h"
+#include "simtree/tracking/tracker_error.h"
 #include "verbs.h"
 
 namespace fs = std::filesystem;
@@ -28,9 +28,9 @@ void RegisterIdentify(CLI::App& app) {
         estimator = ToString(kDefaultEstimator);
     double release_time = -1, window = 0;
     bool no_plots = false, no_compare = false, no_root = false;
-    double noise_mm = 0, gap_rate = 0.005;
+    double noise_mm = 0, gap_rate = TrackerErrorOptions{}.gap_start_rate;
     uint64_t seed = 1;
-    std::string write_noisy;
+    std::string write_noisy, visibility;
   };
   auto args = std::make_shared<Args>();
   CLI::App* verb = app.add_subcommand(
@@ -75,13 +75,20 @@ void RegisterIdentify(CLI::App& app) {
                              "like a tracker's");
   testing
       ->add_option("--simulate-tracker-noise", args->noise_mm,
-                   "Add white noise of this many mm in x and y, 1.5 times that in depth z")
+                   "Add a tracker's errors: this 3D RMS error in mm (twice as large along depth "
+                   "as across the image, correlated from frame to frame), short gaps, rare jumps")
       ->check(CLI::NonNegativeNumber);
   testing
       ->add_option("--gap-rate", args->gap_rate,
-                   "With --simulate-tracker-noise: chance per marker and frame that a gap of "
-                   "1-6 frames starts")
-      ->capture_default_str();
+                   "With --simulate-tracker-noise: chance per marker and frame that a gap starts "
+                   "(5 frames long on average)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 1.0));
+  testing
+      ->add_option("--visibility", args->visibility,
+                   "With --simulate-tracker-noise: gt/markers_2d.json; a marker is lost where the "
+                   "camera did not see its tape")
+      ->check(CLI::ExistingFile);
   testing->add_option("--seed", args->seed, "With --simulate-tracker-noise")->capture_default_str();
   testing->add_option("--write-noisy", args->write_noisy,
                       "Also write the noisy trajectories used (trajectories.csv)");
@@ -90,7 +97,7 @@ void RegisterIdentify(CLI::App& app) {
       "simtree identify tracks/trajectories.csv --links markers.json --out m.json --estimator "
       "half_power_fft",
       "simtree identify scene/gt/trajectories.csv --links scene/pull/markers.json --out m.json "
-      "--simulate-tracker-noise 2.5 --seed 3 --window 10",
+      "--simulate-tracker-noise 2.5 --visibility scene/gt/markers_2d.json --seed 3 --window 10",
       "simtree identify tracks/ --tree static.json --camera-pose scene/gt/pull_camera.json --out "
       "m.json",
   }));
@@ -118,14 +125,17 @@ void RegisterIdentify(CLI::App& app) {
 
     Trajectories trajectories = ReadTrajectoriesCsv(trajectories_path);
     if (args->noise_mm > 0) {
-      TrackerNoiseOptions noise;
-      noise.sigma_xy_m = args->noise_mm * 1e-3;
-      noise.sigma_z_m = 1.5 * args->noise_mm * 1e-3;
-      noise.gap_rate = args->gap_rate;
+      TrackerErrorOptions noise;
+      noise.rms_error_mm = args->noise_mm;
+      noise.gap_start_rate = args->gap_rate;
       noise.seed = args->seed;
-      trajectories = AddTrackerNoise(trajectories, noise);
-      spdlog::info("added tracker-like noise: {:.1f} mm (x, y), {:.1f} mm (z), gaps at rate {}",
-                   args->noise_mm, 1.5 * args->noise_mm, args->gap_rate);
+      std::vector<MarkerFrame2d> visibility;
+      if (!args->visibility.empty()) visibility = ReadMarkers2d(args->visibility);
+      trajectories = SimulateTrackerError(trajectories, noise,
+                                          args->visibility.empty() ? nullptr : &visibility);
+      spdlog::info("added a tracker's errors: {:.1f} mm RMS, gaps starting at rate {}{}",
+                   args->noise_mm, args->gap_rate,
+                   args->visibility.empty() ? "" : ", lost where the tape was not seen");
       if (!args->write_noisy.empty()) {
         RefuseToOverwriteInputs(args->write_noisy, inputs);
         WriteTrajectoriesCsv(trajectories, args->write_noisy);

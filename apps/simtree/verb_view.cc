@@ -1,10 +1,138 @@
+#include <spdlog/spdlog.h>
+
 #include "cli_common.h"
+#include "scene_options.h"
+#include "sim_options.h"
+#include "simtree/core/error.h"
+#include "simtree/dynamics/recorders.h"
+#include "simtree/io/ground_truth.h"
+#include "simtree/viewer/marker_playback.h"
+#include "simtree/viewer/viewer_app.h"
 #include "verbs.h"
 
 namespace simtree::cli {
 
 void RegisterView(CLI::App& app) {
-  AddNotBuiltVerb(app, "view", "Interactive window: pull, release, tune materials", "viewer");
+  struct Args {
+    SceneArgs scene;
+    SimulationArgs run;
+    std::string script, tracks, camera_pose, screenshots = ".";
+    std::vector<int> size = {1280, 800};
+    int msaa = 0;
+    int marker_level = 2;
+    bool paused = false, fixed_step = false, vsync = false;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* verb = app.add_subcommand(
+      "view",
+      "Interactive window: pull and release branches with the mouse, wind, tune frequency, "
+      "damping and stiffness live, play tracked markers back against the simulation");
+  AddTreeInput(verb, args->scene);
+  AddPullOptions(verb, args->run);
+  AddWindOptions(verb, args->run);
+  AddModelOptions(verb, args->run);
+  AddSceneOptions(verb, args->scene);
+  verb->add_option("--fps", args->run.sim.fps,
+                   "Simulation frames per second with --fixed-step (and scripts)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+
+  auto* window = verb->add_option_group("window");
+  window->add_option("--size", args->size, "Window size WIDTH,HEIGHT in pixels")
+      ->expected(2)
+      ->delimiter(',')
+      ->capture_default_str();
+  window->add_option("--msaa", args->msaa, "Anti-aliasing samples (0 = off; slow without a GPU)")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 16));
+  window->add_flag("--vsync", args->vsync, "Wait for the display's refresh");
+  window->add_flag("--paused", args->paused, "Start with the simulation paused");
+  window->add_flag("--fixed-step", args->fixed_step,
+                   "Advance 1/fps simulated seconds per drawn frame, however long it takes");
+  window
+      ->add_option("--screenshots", args->screenshots,
+                   "Folder for screenshots taken with the p key or the panel button")
+      ->capture_default_str();
+  window
+      ->add_option("--script", args->script,
+                   "Scripted input, one action a line: pick X Y, pick-branch B[@S], drag X Y "
+                   "[FRAMES], release, hover X Y, wait N, screenshot PATH, key K, play, pause, "
+                   "step, reset, wind on|off|SPEED, leaves on|off, material branch|level ID "
+                   "frequency|damping|stiffness V, orbit DYAW DPITCH, zoom F, quit")
+      ->check(CLI::ExistingFile);
+
+  auto* playback = verb->add_option_group("playback");
+  playback
+      ->add_option("--tracks", args->tracks,
+                   "Measured marker tracks to show beside the simulated markers: "
+                   "trajectories.csv from `track` (camera frame, needs --camera-pose) or the "
+                   "world-frame markers.csv of `simulate`")
+      ->check(CLI::ExistingFile);
+  playback
+      ->add_option("--camera-pose", args->camera_pose,
+                   "The pull camera's pose (world_from_camera JSON, as gt/pull_camera.json)")
+      ->check(CLI::ExistingFile);
+  playback
+      ->add_option("--marker-level", args->marker_level,
+                   "For a tree without markers: tip markers up to this level, as `simulate` "
+                   "places them")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
+
+  verb->footer(Examples({
+      "simtree view tree02.txt",
+      "simtree view tree01.txt --material-file tree_parameters.txt --leaves none",
+      "simtree view tree.json --pull 3 --force 100 --release 3 --tracks sim/markers.csv",
+      "simtree view tree.json --script actions.txt   # pick-branch 5, drag 700 500 20, wait 30, "
+      "screenshot a.png, release, quit",
+  }));
+
+  verb->callback([args] {
+    Args& a = *args;
+    if (a.size[0] < 64 || a.size[1] < 64) {
+      throw InputError("", "--size", "expected a window of at least 64x64 pixels");
+    }
+    const Tree tree = LoadTreeForViewing(a.scene);
+    FinishSimulationArgs(tree, a.run);
+    ViewerOptions options;
+    options.width = a.size[0];
+    options.height = a.size[1];
+    options.samples = a.msaa;
+    options.vsync = a.vsync;
+    options.title = "simtree view " + a.scene.input;
+    options.style = StyleFromArgs(a.scene);
+    options.dynamics = a.run.sim.dynamics;
+    options.pull = a.run.sim.pull;
+    options.fps = a.run.sim.fps;
+    options.start_paused = a.paused;
+    options.screenshot_dir = a.screenshots;
+    if (!a.script.empty()) {
+      options.script = ReadScript(a.script);
+      options.script_source = a.script;
+      options.fixed_step = true;  // a script means the same motion however fast frames are drawn
+    }
+    options.fixed_step = options.fixed_step || a.fixed_step;
+    if (!a.tracks.empty()) {
+      std::optional<Eigen::Isometry3d> pose;
+      if (!a.camera_pose.empty()) pose = ReadPullCamera(a.camera_pose);
+      options.measured = ReadTracksInWorld(a.tracks, pose);
+    }
+    options.markers = tree.markers;
+    // Playback compares markers by id: the ones `simulate` tracked on a tree without its own.
+    if (options.markers.empty() && options.measured) {
+      std::optional<Rope> rope;
+      if (options.pull) rope = options.pull->rope;
+      options.markers = AutoMarkers(tree, a.marker_level, rope);
+    }
+    const SceneAssets assets = LoadSceneAssets(tree, a.scene.input, a.scene.foliage);
+    Viewer viewer(tree, assets, options);
+    viewer.Run();
+    const ViewerStats& stats = viewer.stats();
+    spdlog::info(
+        "view: {} frames, {:.1f} ms a frame on average ({:.1f} ms drawing, {:.1f} ms "
+        "simulating)",
+        stats.frames, stats.mean_frame_ms, stats.mean_draw_ms, stats.mean_simulate_ms);
+  });
 }
 
 }  // namespace simtree::cli

@@ -6,6 +6,7 @@
 #include "simtree/core/tree_json.h"
 #include "simtree/identification/materials_file.h"
 #include "simtree/identification/test_signals.h"
+#include "simtree/tracking/tracker_error.h"
 #include "test_util.h"
 #include "tree_fixture.h"
 
@@ -28,7 +29,7 @@ fs::path WritePullTest(const fs::path& dir) {
   const Trajectories t = MakeMarkerTrajectories(tree, 30, 1.5, 10, &markers);
   for (int m = 0; m < 3; ++m) markers[m].branch = m;
   fs::create_directories(dir / "tracks");
-  WriteTrajectoriesCsv(AddTrackerNoise(t, {}), dir / "tracks" / "trajectories.csv");
+  WriteTrajectoriesCsv(SimulateTrackerError(t, {}), dir / "tracks" / "trajectories.csv");
   WriteMarkersJson(markers, dir / "markers.json");
   return dir;
 }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "simtree/identification/test_signals.h"
+#include "simtree/tracking/tracker_error.h"
 
 namespace simtree {
 namespace {
@@ -22,9 +23,9 @@ TEST(Release, FoundAtTheEndOfTheHoldEvenWithTrackerNoise) {
   std::vector<MarkerLink> markers;
   const Trajectories truth = MakeMarkerTrajectories(Pulled(), 30.0, 3.0, 8.0, &markers);
   for (uint64_t seed : {1, 2, 3}) {
-    TrackerNoiseOptions noise;
+    TrackerErrorOptions noise;
     noise.seed = seed;
-    const ReleaseDetection r = DetectRelease(AddTrackerNoise(truth, noise));
+    const ReleaseDetection r = DetectRelease(SimulateTrackerError(truth, noise));
     EXPECT_TRUE(r.found) << r.note;
     EXPECT_EQ(r.marker, 1);
     // Never before the release (a still frame in the decay would break the model), at most
@@ -44,8 +45,8 @@ TEST(Release, ARecordThatStartsSwingingOrNeverMovesStartsAtItsFirstFrame) {
 
   SyntheticMarkerTree still = Pulled();
   still.links[0].theta_u.clear();
-  const ReleaseDetection flat =
-      DetectRelease(AddTrackerNoise(MakeMarkerTrajectories(still, 30.0, 1.0, 5.0, &markers), {}));
+  const ReleaseDetection flat = DetectRelease(
+      SimulateTrackerError(MakeMarkerTrajectories(still, 30.0, 1.0, 5.0, &markers), {}));
   EXPECT_FALSE(flat.found);
   EXPECT_EQ(flat.frame_index, 0);
   EXPECT_THAT(flat.note, HasSubstr("no marker moves above its noise"));

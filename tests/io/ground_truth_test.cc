@@ -101,6 +101,20 @@ TEST(GroundTruth, Markers2dAndModalTruthRoundTrip) {
   ASSERT_EQ(read.links.size(), 1u);
   EXPECT_EQ(read.links[0].child, 1);
   EXPECT_EQ(read.branches[1].frequency_hz, 1.3);
+  EXPECT_TRUE(read.links[0].peaks.empty());
+
+  // The optional strongest modes of a signal round-trip too.
+  truth.links[0].peaks = {{1, 1.3, 0.04, 0.02, 0.35}, {0, 0.9, 0.03, 0.004, 0.1}};
+  truth.branches[1].peaks = {{1, 1.3, 0.04, 0.01, 0.2}};
+  WriteModalTruth(truth, dir / "modal.json");
+  const ModalTruth with_peaks = ReadModalTruth(dir / "modal.json");
+  ASSERT_EQ(with_peaks.links[0].peaks.size(), 2u);
+  EXPECT_EQ(with_peaks.links[0].peaks[1].mode, 0);
+  EXPECT_EQ(with_peaks.links[0].peaks[0].strength, 0.35);
+  EXPECT_EQ(with_peaks.links[0].peaks[1].amplitude, 0.004);
+  ASSERT_EQ(with_peaks.branches[1].peaks.size(), 1u);
+  EXPECT_EQ(with_peaks.branches[1].peaks[0].damping_ratio, 0.04);
+  EXPECT_TRUE(with_peaks.branches[0].peaks.empty());
   EXPECT_THAT(ErrorOf([&] { ReadModalTruth(dir / "none.json"); }), HasSubstr("missing"));
 }
 

@@ -42,10 +42,15 @@ MaterialRanges IdentificationResult::Ranges(std::optional<EstimatorKind> kind) c
   return r;
 }
 
-IdentificationResult IdentifyMaterials(const Trajectories& trajectories,
+IdentificationResult IdentifyMaterials(const Trajectories& input,
                                        const std::vector<MarkerLink>& markers,
                                        const IdentifyOptions& options, const std::string& source) {
   IdentificationResult out;
+  Trajectories trajectories = input;
+  if (options.remove_outliers) {
+    out.outliers = RemoveTrackOutliers(trajectories, options.outliers);
+    if (out.outliers.removed > 0) spdlog::info("{}: {}", source, out.outliers.note);
+  }
   out.estimator = options.estimator;
   if (trajectories.frame_count() < 2) {
     throw InputError(source, "", "expected at least 2 frames of trajectories");

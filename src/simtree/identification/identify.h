@@ -13,6 +13,7 @@
 #include "simtree/identification/deflection.h"
 #include "simtree/identification/estimators.h"
 #include "simtree/identification/release.h"
+#include "simtree/identification/track_outliers.h"
 #include "simtree/io/capture.h"
 #include "simtree/io/trajectories.h"
 
@@ -31,6 +32,9 @@ struct IdentifyOptions {
   DeflectionOptions deflection;
   // Give the root (trunk) marker's displacement a value too.
   bool include_root = true;
+  // Tracker jumps are turned into gaps before anything else (track_outliers.h).
+  bool remove_outliers = true;
+  TrackOutlierOptions outliers;
 };
 
 struct LinkIdentification {
@@ -54,7 +58,8 @@ struct MaterialRanges {
 };
 
 struct IdentificationResult {
-  ReleaseDetection release;  // as detected (or as given)
+  TrackOutlierReport outliers;  // tracker jumps removed before the rest
+  ReleaseDetection release;     // as detected (or as given)
   double window_start_s = 0.0, window_end_s = 0.0;
   double frame_rate_hz = 0.0;
   EstimatorKind estimator = kDefaultEstimator;

@@ -55,31 +55,6 @@ SampledSignal MakeDecayRecord(const std::vector<std::vector<DampedSinusoid>>& ch
   return out;
 }
 
-Trajectories AddTrackerNoise(const Trajectories& truth, const TrackerNoiseOptions& options) {
-  std::mt19937_64 rng(options.seed);
-  std::normal_distribution<double> noise(0.0, 1.0);
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  std::uniform_int_distribution<int> gap_length(1, std::max(1, options.max_gap_frames));
-  Trajectories out = truth;
-  for (MarkerTrack& track : out.tracks) {
-    int lost_until = -1;
-    for (int i = 0; i < out.frame_count(); ++i) {
-      if (i > lost_until && options.gap_rate > 0 && uniform(rng) < options.gap_rate) {
-        lost_until = i + gap_length(rng) - 1;
-      }
-      const Eigen::Vector3d e(options.sigma_xy_m * noise(rng), options.sigma_xy_m * noise(rng),
-                              options.sigma_z_m * noise(rng));
-      if (i <= lost_until || !track.valid[i]) {
-        track.valid[i] = false;
-        track.positions[i].setConstant(std::numeric_limits<double>::quiet_NaN());
-      } else {
-        track.positions[i] += e;
-      }
-    }
-  }
-  return out;
-}
-
 Trajectories MakeMarkerTrajectories(const SyntheticMarkerTree& tree, double fps, double hold_s,
                                     double decay_s, std::vector<MarkerLink>* markers) {
   const int count = static_cast<int>(tree.links.size()) + 1;

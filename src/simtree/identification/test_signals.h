@@ -39,18 +39,6 @@ struct DecayRecordOptions {
 SampledSignal MakeDecayRecord(const std::vector<std::vector<DampedSinusoid>>& channels,
                               const DecayRecordOptions& options);
 
-// Tracker-like errors on true marker positions (camera frame): white noise, larger along the
-// depth axis z, and occasional gaps (a marker lost for a few frames).
-struct TrackerNoiseOptions {
-  double sigma_xy_m = 0.002;
-  double sigma_z_m = 0.003;
-  // Per marker and frame, the chance that the marker is lost from here for 1..max_gap_frames.
-  double gap_rate = 0.005;
-  int max_gap_frames = 6;
-  uint64_t seed = 1;
-};
-Trajectories AddTrackerNoise(const Trajectories& truth, const TrackerNoiseOptions& options);
-
 // A small marker tree with known link deflections, for end-to-end tests of deflection signals and
 // identification: a root marker (its displacement given per camera axis), and links, each a rest
 // direction and length from its parent marker with theta_u(t), theta_w(t) against its parent link

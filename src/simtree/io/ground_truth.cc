@@ -203,6 +203,44 @@ void WriteMarkers2d(const std::vector<MarkerFrame2d>& frames, const fs::path& pa
   WriteFileAtomically(path, out);
 }
 
+namespace {
+
+// The optional "peaks" of a link or branch.
+std::vector<ModalTruth::ModePeak> ReadPeaks(const JsonReader& r, const nlohmann::json& owner,
+                                            const std::string& at) {
+  std::vector<ModalTruth::ModePeak> peaks;
+  if (!owner.contains("peaks")) return peaks;
+  const std::string pat = Member(at, "peaks");
+  const auto& list = r.Array(owner["peaks"], pat);
+  for (size_t k = 0; k < list.size(); ++k) {
+    const std::string kat = Element(pat, k);
+    ModalTruth::ModePeak p;
+    p.mode = r.Integer(r.Field(list[k], "mode", kat), Member(kat, "mode"));
+    p.frequency_hz = r.Number(r.Field(list[k], "frequency_hz", kat), Member(kat, "frequency_hz"));
+    p.damping_ratio =
+        r.Number(r.Field(list[k], "damping_ratio", kat), Member(kat, "damping_ratio"));
+    p.amplitude = r.Number(r.Field(list[k], "amplitude", kat), Member(kat, "amplitude"));
+    p.strength = r.Number(r.Field(list[k], "strength", kat), Member(kat, "strength"));
+    peaks.push_back(p);
+  }
+  return peaks;
+}
+
+void WritePeaks(const std::vector<ModalTruth::ModePeak>& peaks, ojson& owner) {
+  if (peaks.empty()) return;
+  ojson list = ojson::array();
+  for (const auto& p : peaks) {
+    list.push_back({{"mode", p.mode},
+                    {"frequency_hz", p.frequency_hz},
+                    {"damping_ratio", p.damping_ratio},
+                    {"amplitude", p.amplitude},
+                    {"strength", p.strength}});
+  }
+  owner["peaks"] = std::move(list);
+}
+
+}  // namespace
+
 ModalTruth ReadModalTruth(const fs::path& path) {
   const nlohmann::json doc = ReadDocument(path);
   const JsonReader r(path.string());
@@ -224,6 +262,7 @@ ModalTruth ReadModalTruth(const fs::path& path) {
     l.child = r.Integer(r.Field(links[i], "child", at), Member(at, "child"));
     l.frequency_hz = r.Number(r.Field(links[i], "frequency_hz", at), Member(at, "frequency_hz"));
     l.damping_ratio = r.Number(r.Field(links[i], "damping_ratio", at), Member(at, "damping_ratio"));
+    l.peaks = ReadPeaks(r, links[i], at);
     t.links.push_back(l);
   }
   const auto& branches = r.Array(r.Field(doc, "branches", ""), "branches");
@@ -234,6 +273,7 @@ ModalTruth ReadModalTruth(const fs::path& path) {
     b.frequency_hz = r.Number(r.Field(branches[i], "frequency_hz", at), Member(at, "frequency_hz"));
     b.damping_ratio =
         r.Number(r.Field(branches[i], "damping_ratio", at), Member(at, "damping_ratio"));
+    b.peaks = ReadPeaks(r, branches[i], at);
     t.branches.push_back(b);
   }
   return t;
@@ -245,15 +285,18 @@ void WriteModalTruth(const ModalTruth& t, const fs::path& path) {
     modes.push_back({{"frequency_hz", m.frequency_hz}, {"damping_ratio", m.damping_ratio}});
   }
   for (const auto& l : t.links) {
-    links.push_back({{"parent", l.parent},
-                     {"child", l.child},
-                     {"frequency_hz", l.frequency_hz},
-                     {"damping_ratio", l.damping_ratio}});
+    ojson link = {{"parent", l.parent},
+                  {"child", l.child},
+                  {"frequency_hz", l.frequency_hz},
+                  {"damping_ratio", l.damping_ratio}};
+    WritePeaks(l.peaks, link);
+    links.push_back(std::move(link));
   }
   for (const auto& b : t.branches) {
-    branches.push_back({{"branch", b.branch},
-                        {"frequency_hz", b.frequency_hz},
-                        {"damping_ratio", b.damping_ratio}});
+    ojson branch = {
+        {"branch", b.branch}, {"frequency_hz", b.frequency_hz}, {"damping_ratio", b.damping_ratio}};
+    WritePeaks(b.peaks, branch);
+    branches.push_back(std::move(branch));
   }
   const ojson doc = {{"format", kModalFormat}, {"version", 1},   {"source", t.source},
                      {"modes", modes},         {"links", links}, {"branches", branches}};

@@ -76,24 +76,37 @@ struct MarkerFrame2d {
 std::vector<MarkerFrame2d> ReadMarkers2d(const std::filesystem::path& path);
 void WriteMarkers2d(const std::vector<MarkerFrame2d>& frames, const std::filesystem::path& path);
 
-// The FEM oracle's modal truth.
+// The FEM oracle's modal truth (definitions in synth/fem_truth.h).
 struct ModalTruth {
   struct TreeMode {
     double frequency_hz = 0.0;
     double damping_ratio = 0.0;
   };
-  // The dominant mode of a marker link's relative deflection (paper Fig. 8b).
+  // One mode's share of a deflection signal after release (optional in the file: "peaks").
+  struct ModePeak {
+    int mode = 0;  // index into `modes`
+    double frequency_hz = 0.0;
+    double damping_ratio = 0.0;
+    // The mode's amplitude in the signal at release (rad; metres for the root marker).
+    double amplitude = 0.0;
+    // Its spectral peak over the record T after release: amplitude (1 - e^(-zeta w T)) / (zeta w).
+    double strength = 0.0;
+  };
+  // The dominant mode of a marker link's relative deflection (paper Fig. 8b); parent -1 is the
+  // root marker's own displacement.
   struct Link {
     int parent = -1;  // marker ids
     int child = 0;
     double frequency_hz = 0.0;
     double damping_ratio = 0.0;
+    std::vector<ModePeak> peaks = {};  // strongest first (the dominant mode, then the runner-up)
   };
   // The dominant mode of a branch's own deflection relative to its parent.
   struct BranchTruth {
     int branch = 0;
     double frequency_hz = 0.0;
     double damping_ratio = 0.0;
+    std::vector<ModePeak> peaks = {};  // strongest first
   };
   std::string source;           // what produced it ("fem", or "stand-in" while the FEM is not in)
   std::vector<TreeMode> modes;  // ascending frequency

@@ -1,0 +1,68 @@
+#pragma once
+// `simtree synth`: a whole synthetic capture with its ground truth, the bench every stage is
+// scored on (docs/formats.md, "Capture folder"; docs/synth.md).
+//
+//   1. a procedural tree of a species (tree_generator.h) with red tape markers
+//   (marker_placement.h);
+//   2. the FEM oracle of that tree (fem_*.h): modes, the pull test's motion, the modal truth;
+//   3. the virtual Azure Kinect (sensor_*.h, rgbd_renderer.h): N hand-held static views around the
+//      tree, the tree trembling a little between them, then the fixed camera of the pull test
+//      (rope tied, pulled, held, cut; the free decay), every frame colour + depth;
+//   4. the capture folder (what a real recording gives) and gt/ (what only synth knows), written
+//      whole or not at all, plus a contact sheet of every view to look at.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "simtree/io/image_io.h"
+
+namespace simtree {
+
+struct SynthOptions {
+  std::string species = "acer_rubrum";  // a preset (species.h)
+  std::filesystem::path species_file;   // or a custom species JSON (wins over `species`)
+  uint64_t seed = 7;
+  // A small, fast scene for tests: a smaller tree, 4 views, a 5 s pull stream.
+  bool quick = false;
+  // More occlusion (a post and a shrub by the tree), more sensor noise, fewer and wider-spaced
+  // views.
+  bool hard = false;
+  int views = 0;            // 0: 10 (hard: 7, quick: 4)
+  double duration_s = 0.0;  // pull stream length; 0: 15 s (quick: 5 s)
+  double fps = 30.0;
+  int markers = 12;
+  // The rope's pull: the force is chosen so the tied point moves this far at the hold (a pull
+  // test an arborist would do by hand: a few centimetres), within [min, max] newtons.
+  double pull_deflection_m = 0.08;
+  double min_force_n = 5.0;
+  double max_force_n = 400.0;
+  // Also write contact_sheet.png.
+  bool contact_sheet = true;
+  PngOptions png;
+};
+
+struct SynthReport {
+  std::string species;
+  uint64_t seed = 0;
+  int branches = 0, nodes = 0, levels = 0, markers = 0;
+  double height_m = 0.0;
+  double first_frequency_hz = 0.0;  // the FEM's lowest mode
+  int fem_dof = 0, fem_modes = 0;
+  int pull_branch = -1;
+  double pull_force_n = 0.0, pull_release_s = 0.0;
+  int views = 0, frames = 0;
+  // Wall-clock seconds of each part.
+  double tree_s = 0, fem_s = 0, scans_s = 0, pull_s = 0, total_s = 0;
+  // Valid depth pixels on the tree, mean over the views (how much of it the sensor kept).
+  double tree_pixels_per_view = 0.0;
+
+  std::string Summary() const;
+};
+
+// Writes the capture to `out` (replaced whole, or left untouched when anything fails). Throws
+// InputError for bad options or species, IoError when it cannot write.
+SynthReport RunSynth(const SynthOptions& options, const std::filesystem::path& out);
+
+}  // namespace simtree

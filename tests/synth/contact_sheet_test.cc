@@ -1,0 +1,46 @@
+#include "simtree/synth/contact_sheet.h"
+
+#include <gtest/gtest.h>
+
+#include "simtree/core/error.h"
+
+namespace simtree {
+namespace {
+
+TEST(ContactSheet, EveryViewAppearsAsColourBesideDepth) {
+  std::vector<ContactSheetTile> tiles;
+  for (int i = 0; i < 3; ++i) {
+    ContactSheetTile t;
+    t.label = "view_0" + std::to_string(i);
+    t.color = RgbImage(64, 48, static_cast<uint8_t>(40 + 80 * i));
+    t.depth = DepthImage(64, 48, 1500);
+    tiles.push_back(t);
+  }
+  ContactSheetOptions options;
+  options.columns = 2;
+  options.scale = 0.5;
+  const RgbImage sheet = MakeContactSheet(tiles, options);
+  // Two columns of (32 + gap + 32)-wide cells, two rows.
+  EXPECT_GT(sheet.width, 2 * 64);
+  EXPECT_GT(sheet.height, 2 * 24);
+  // The third view's colour (grey 200) is in the sheet; an empty slot stays background.
+  bool found = false;
+  for (int y = 0; y < sheet.height && !found; ++y) {
+    for (int x = 0; x < sheet.width && !found; ++x) {
+      found = sheet.at(x, y, 0) == 200 && sheet.at(x, y, 1) == 200 && sheet.at(x, y, 2) == 200;
+    }
+  }
+  EXPECT_TRUE(found);
+}
+
+TEST(ContactSheet, MismatchedOrMissingImagesAreRefused) {
+  EXPECT_THROW(MakeContactSheet({}), InputError);
+  ContactSheetTile t;
+  t.label = "view_00";
+  t.color = RgbImage(64, 48);
+  t.depth = DepthImage(32, 48);
+  EXPECT_THROW(MakeContactSheet({t}), InputError);
+}
+
+}  // namespace
+}  // namespace simtree

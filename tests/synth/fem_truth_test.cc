@@ -1,0 +1,131 @@
+#include "simtree/synth/fem_truth.h"
+
+#include <cmath>
+
+#include <fmt/format.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "simtree/core/error.h"
+#include "synth/fem_test_trees.h"
+
+namespace simtree {
+namespace {
+
+using ::testing::HasSubstr;
+
+Marker MakeMarker(const Tree& tree, int id, int branch, double arc_length, int parent) {
+  return {id,     fmt::format("M{}", id),
+          branch, arc_length,
+          parent, tree.branches[branch].PointAt(arc_length)};
+}
+
+// The static deflection under a tip force, at rest: what a held pull leaves at release.
+FemState HeldState(const FemModel& model, int branch, const Eigen::Vector3d& force) {
+  FemState s = RestState(model);
+  s.x = SolveStatic(model, model.PointLoad(branch, model.tree().branches[branch].Length(), force));
+  return s;
+}
+
+// A single cantilever with a marker at mid-length (the root) and one at the tip: released from a
+// tip pull, every signal is dominated by the first bending mode.
+TEST(FemTruth, CantileverMarkersSeeTheFirstMode) {
+  Tree tree = test::UniformCantilever({0, 0, 1}, 2.0, 0.02, 20);
+  tree.markers = {MakeMarker(tree, 0, 0, 1.0, -1), MakeMarker(tree, 1, 0, 2.0, 0)};
+  WoodProperties wood = test::TestWood();
+  wood.SetRayleighFromRatios(1.0, 0.04, 30.0, 0.03);
+  const FemModel model(tree, wood);
+  const ModalBasis modes = ComputeModes(model, {.count = 12});
+  const ModalTruth truth = ComputeModalTruth(model, modes, tree, HeldState(model, 0, {10, 0, 0}));
+  EXPECT_EQ(truth.source, "fem");
+  ASSERT_EQ(truth.modes.size(), 12u);
+  const double f1 = test::CantileverFrequencyHz(test::kBetaL1, wood, 2.0, 0.02);
+  ASSERT_EQ(truth.links.size(), 2u);
+  EXPECT_EQ(truth.links[0].parent, -1);  // the root marker's displacement first
+  EXPECT_EQ(truth.links[0].child, 0);
+  EXPECT_EQ(truth.links[1].parent, 0);
+  EXPECT_EQ(truth.links[1].child, 1);
+  for (const ModalTruth::Link& link : truth.links) {
+    EXPECT_NEAR(link.frequency_hz / f1, 1.0, 1e-2) << link.child;
+    EXPECT_NEAR(link.damping_ratio, wood.DampingRatioAt(link.frequency_hz), 1e-12);
+    ASSERT_EQ(link.peaks.size(), 2u);
+    EXPECT_LE(link.peaks[0].mode, 1);  // one of the two planes' first mode
+    EXPECT_GT(link.peaks[0].strength, 10 * link.peaks[1].strength);
+    EXPECT_GT(link.peaks[0].amplitude, 0.0);
+  }
+  ASSERT_EQ(truth.branches.size(), 1u);
+  EXPECT_NEAR(truth.branches[0].frequency_hz / f1, 1.0, 1e-2);
+  // The root marker's amplitude is the first mode's share of its static deflection (metres):
+  // P phi(L/2) phi(L) / (rho A L omega^2) with the closed-form shape
+  // phi(x) = cosh bx - cos bx - s (sinh bx - sin bx), s = (cosh b + cos b) / (sinh b + sin b),
+  // which is normalised so that the mean of phi^2 over the length is 1 (and phi(L) = 2).
+  const double b = test::kBetaL1;
+  const double s = (std::cosh(b) + std::cos(b)) / (std::sinh(b) + std::sin(b));
+  const auto phi = [&](double x) {
+    return std::cosh(b * x) - std::cos(b * x) - s * (std::sinh(b * x) - std::sin(b * x));
+  };
+  const double rho_a_l = wood.density_kg_m3 * kPi * 0.02 * 0.02 * 2.0;
+  const double omega = kTwoPi * f1;
+  EXPECT_NEAR(
+      truth.links[0].peaks[0].amplitude / (10.0 * phi(0.5) * phi(1.0) / (rho_a_l * omega * omega)),
+      1.0, 1e-3);
+}
+
+// On the Y, a pulled child's link and branch see the children's modes. Pulled sideways, one
+// child holds the in-phase and the out-of-phase mode of the pair equally, and so does the other
+// child by the Y's mirror symmetry: both get the same truth.
+TEST(FemTruth, YTreeChildrenSeeTheirPairedModes) {
+  Tree tree = test::YTree(0.08, 0.02);
+  tree.markers = {MakeMarker(tree, 0, 0, 0.5, -1), MakeMarker(tree, 1, 1, 0.9, 0),
+                  MakeMarker(tree, 2, 2, 0.9, 0)};
+  WoodProperties wood = test::TestWood();
+  wood.SetRayleighFromRatios(1.0, 0.04, 30.0, 0.03);
+  const FemModel model(tree, wood);
+  const ModalBasis modes = ComputeModes(model, {.count = 20});
+  const ModalTruth truth = ComputeModalTruth(model, modes, tree, HeldState(model, 1, {0, 20, 0}));
+  ASSERT_EQ(truth.branches.size(), 3u);
+  ASSERT_EQ(truth.links.size(), 3u);
+  const double child_f1 = test::CantileverFrequencyHz(test::kBetaL1, wood, 1.0, 0.02);
+  for (int b : {1, 2}) {
+    EXPECT_NEAR(truth.branches[b].frequency_hz / child_f1, 1.0, 0.15) << b;
+    EXPECT_NEAR(truth.links[b].frequency_hz / child_f1, 1.0, 0.15) << b;
+    // The runner-up is the pair's other mode, nearly as strong.
+    const auto& peaks = truth.branches[b].peaks;
+    ASSERT_EQ(peaks.size(), 2u);
+    EXPECT_NEAR(peaks[1].frequency_hz / peaks[0].frequency_hz, 1.0, 0.05);
+    EXPECT_GT(peaks[1].strength, 0.5 * peaks[0].strength);
+  }
+  EXPECT_NEAR(truth.branches[2].peaks[0].strength / truth.branches[1].peaks[0].strength, 1.0, 1e-6);
+  EXPECT_EQ(truth.branches[2].peaks[0].mode, truth.branches[1].peaks[0].mode);
+  // Links and branches name existing modes.
+  for (const auto& l : truth.links) {
+    ASSERT_FALSE(l.peaks.empty());
+    EXPECT_EQ(l.frequency_hz, truth.modes[l.peaks[0].mode].frequency_hz);
+  }
+}
+
+TEST(FemTruth, BadInputIsAnInputError) {
+  Tree tree = test::UniformCantilever({0, 0, 1}, 1.0, 0.02, 10);
+  tree.markers = {MakeMarker(tree, 0, 0, 0.5, -1), MakeMarker(tree, 1, 0, 0.5, 0)};
+  const FemModel model(tree, test::TestWood());
+  const ModalBasis modes = ComputeModes(model, {.count = 4});
+  const FemState held = HeldState(model, 0, {1, 0, 0});
+  try {
+    ComputeModalTruth(model, modes, tree, held);
+    FAIL() << "coincident markers accepted";
+  } catch (const InputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("coincide"));
+  }
+  tree.markers[1].arc_length = 1.0;
+  tree.markers[1].position = tree.branches[0].tip().position;
+  FemState bad = held;
+  bad.v.resize(3);
+  EXPECT_THROW(ComputeModalTruth(model, modes, tree, bad), InputError);
+  EXPECT_THROW(ComputeModalTruth(model, modes, test::YTree(), held), InputError);
+  EXPECT_THROW(ComputeModalTruth(model, modes, tree, held, {.record_after_release_s = 0}),
+               InputError);
+  EXPECT_NO_THROW(ComputeModalTruth(model, modes, tree, held));
+}
+
+}  // namespace
+}  // namespace simtree

@@ -1,0 +1,164 @@
+// `simtree synth` end to end: a quick capture is a capture folder the pipeline opens, its ground
+// truth is complete and consistent with the images, the same seed gives the same bytes, and bad
+// input gives a clear error and no output.
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "simtree/core/tree_json.h"
+#include "simtree/io/capture.h"
+#include "simtree/io/ground_truth.h"
+#include "simtree/io/trajectories.h"
+#include "test_util.h"
+
+namespace fs = std::filesystem;
+
+namespace simtree {
+namespace {
+
+using ::testing::HasSubstr;
+
+// A quick capture in the test's own folder (CTest runs the tests of a suite side by side).
+fs::path QuickCapture(const fs::path& dir, const std::string& extra = "") {
+  const test::CliResult r =
+      test::RunCli("-q synth --quick --seed 3 " + extra + " --out " + dir.string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  return dir;
+}
+
+TEST(SynthCli, QuickCaptureIsACaptureFolderWithCompleteGroundTruth) {
+  const fs::path dir = QuickCapture(test::TempDir() / "scene");
+  const Capture capture = OpenCapture(dir);
+  EXPECT_EQ(capture.views.size(), 4u);
+  ASSERT_TRUE(capture.pull.has_value());
+  EXPECT_EQ(capture.pull->frames.size(), 150u);        // 5 s at 30 fps
+  EXPECT_NEAR(capture.pull->FrameRate(), 30.0, 1e-4);  // times have 6 decimals
+  EXPECT_TRUE(capture.pull->has_markers);
+  EXPECT_TRUE(fs::exists(dir / "contact_sheet.png"));
+
+  // Every view loads: colour and depth of the sensor's size, a fair share of valid depth.
+  for (const ScanView& view : capture.views) {
+    const RgbdImage image = LoadScanView(view);
+    EXPECT_EQ(image.depth.width, 640);
+    EXPECT_EQ(image.depth.height, 576);
+    int valid = 0;
+    for (uint16_t d : image.depth.pixels) valid += d != 0;
+    EXPECT_GT(valid, 2000) << view.name;
+  }
+
+  const Tree tree = ReadTreeJson(dir / "gt" / "tree.json");
+  EXPECT_GE(tree.MaxLevel(), 3);
+  EXPECT_FALSE(tree.markers.empty());
+  EXPECT_EQ(capture.pull->markers.size(), tree.markers.size());
+  EXPECT_EQ(ReadScanPoses(dir / "gt" / "scan_poses.json").size(), capture.views.size());
+  const PullLoad load = ReadPullLoad(dir / "gt" / "pull_load.json");
+  EXPECT_GT(load.force_n, 0.0);
+  EXPECT_LT(load.release_s, 5.0);
+
+  // The true marker tracks: one per marker, every frame; they move while pulled and come back.
+  const Trajectories tracks = ReadTrajectoriesCsv(dir / "gt" / "trajectories.csv");
+  EXPECT_EQ(tracks.frame_count(), 150);
+  ASSERT_EQ(tracks.marker_count(), static_cast<int>(tree.markers.size()));
+  const Eigen::Isometry3d camera = ReadPullCamera(dir / "gt" / "pull_camera.json");
+  for (const Marker& m : tree.markers) {
+    const MarkerTrack* track = tracks.Find(m.id);
+    ASSERT_NE(track, nullptr);
+    // Frame 0 is the rest pose: the marker's rest position seen from the pull camera.
+    EXPECT_LT((track->positions[0] - camera.inverse() * m.position).norm(), 1e-4) << m.id;
+  }
+
+  // Boxes: one entry per frame and marker; a visible marker's centre projects into its box.
+  const std::vector<MarkerFrame2d> boxes = ReadMarkers2d(dir / "gt" / "markers_2d.json");
+  ASSERT_EQ(boxes.size(), 150u);
+  const CameraIntrinsics& k = capture.pull->intrinsics;
+  int visible = 0;
+  for (size_t f = 0; f < boxes.size(); ++f) {
+    ASSERT_EQ(boxes[f].markers.size(), tree.markers.size());
+    for (size_t m = 0; m < boxes[f].markers.size(); ++m) {
+      const MarkerBox2d& b = boxes[f].markers[m];
+      if (!b.visible) continue;
+      ++visible;
+      const Eigen::Vector2d uv = k.Project(tracks.tracks[m].positions[f]);
+      EXPECT_GE(uv.x(), b.box[0] - 1.0);
+      EXPECT_LE(uv.x(), b.box[0] + b.box[2] + 1.0);
+      EXPECT_GE(uv.y(), b.box[1] - 1.0);
+      EXPECT_LE(uv.y(), b.box[1] + b.box[3] + 1.0);
+    }
+  }
+  EXPECT_GT(visible, 0);
+
+  // The modal truth: the tree's modes, a value for every marker link and every branch.
+  const ModalTruth truth = ReadModalTruth(dir / "gt" / "modal.json");
+  EXPECT_EQ(truth.source, "fem");
+  ASSERT_GE(truth.modes.size(), 10u);
+  for (size_t i = 1; i < truth.modes.size(); ++i) {
+    EXPECT_GE(truth.modes[i].frequency_hz, truth.modes[i - 1].frequency_hz);
+  }
+  EXPECT_EQ(truth.links.size(), tree.markers.size());  // the root's displacement and each link
+  for (const ModalTruth::Link& link : truth.links) {
+    EXPECT_GT(link.frequency_hz, 0.0);
+    EXPECT_GT(link.damping_ratio, 0.0);
+  }
+  EXPECT_FALSE(truth.branches.empty());
+}
+
+TEST(SynthCli, SameSeedSameBytes) {
+  const fs::path dir = test::TempDir();
+  const fs::path first = QuickCapture(dir / "first");
+  const fs::path again = QuickCapture(dir / "again", "--threads 1 --no-contact-sheet");
+  for (const char* file : {"scans/view_02/depth.png", "scans/view_02/color.png",
+                           "pull/depth/000100.png", "pull/color/000100.png", "gt/tree.json",
+                           "gt/trajectories.csv", "gt/modal.json", "gt/markers_2d.json"}) {
+    EXPECT_EQ(test::ReadText(first / file), test::ReadText(again / file)) << file;
+  }
+}
+
+TEST(SynthCli, BadInputGivesAClearErrorAndNoOutput) {
+  const fs::path dir = test::TempDir();
+  test::CliResult r = test::RunCli("synth --species oak --out " + (dir / "a").string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_THAT(r.output, HasSubstr("oak"));
+  EXPECT_FALSE(fs::exists(dir / "a"));
+
+  test::WriteText(dir / "species.json", "{\"base\": \"magnolia\", \"height_m\": -3}");
+  r = test::RunCli("synth --species-file " + (dir / "species.json").string() + " --out " +
+                   (dir / "b").string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_THAT(r.output, HasSubstr("height_m"));
+  EXPECT_FALSE(fs::exists(dir / "b"));
+
+  test::WriteText(dir / "truncated.json", "{\"base\": \"magnolia\", \"height_m\": ");
+  r = test::RunCli("synth --species-file " + (dir / "truncated.json").string() + " --out " +
+                   (dir / "c").string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_THAT(r.output, HasSubstr("truncated.json"));
+  EXPECT_FALSE(fs::exists(dir / "c"));
+
+  r = test::RunCli("synth --quick --out " + dir.string() + " --species-file " +
+                   (dir / "species.json").string());
+  EXPECT_NE(r.exit_code, 0);  // the output folder holds an input
+  EXPECT_TRUE(fs::exists(dir / "species.json"));
+
+  r = test::RunCli("synth --quick");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_THAT(r.output, HasSubstr("--out"));
+}
+
+TEST(SynthCli, HelpTeachesAndListsSpecies) {
+  test::CliResult r = test::RunCli("synth --help");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_THAT(r.output, HasSubstr("--species"));
+  EXPECT_THAT(r.output, HasSubstr("--quick"));
+  EXPECT_THAT(r.output, HasSubstr("--hard"));
+  EXPECT_THAT(r.output, HasSubstr("simtree synth --species acer_rubrum --seed 7 --out scene/"));
+  r = test::RunCli("synth --list-species");
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* name : {"acer_palmatum", "magnolia", "acer_rubrum"}) {
+    EXPECT_THAT(r.output, HasSubstr(name));
+  }
+}
+
+}  // namespace
+}  // namespace simtree
