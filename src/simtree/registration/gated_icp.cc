@@ -170,6 +170,9 @@ IcpResult GatedPointToPlaneIcp(const PointCloud& source, const PointCloud& targe
       Eigen::Matrix<double, 6, 1> jtr = sum.jtr;
       if (priors.line) AddLine(*priors.line, transform, sum.count, jtj, jtr);
       if (priors.plane) AddPlane(*priors.plane, transform, sum.count, jtj, jtr);
+      // A whisker of damping keeps a direction nothing constrains (a straight trunk alone along
+      // its axis) from wandering.
+      jtj += 1e-6 * (jtj.trace() / 6.0 + 1e-12) * Eigen::Matrix<double, 6, 6>::Identity();
       const Eigen::Matrix<double, 6, 1> step = jtj.ldlt().solve(-jtr);
       if (!step.allFinite()) break;
       transform = Exp(step) * transform;

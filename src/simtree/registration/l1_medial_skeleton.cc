@@ -76,7 +76,9 @@ Skeleton L1MedialSkeleton(const std::vector<Eigen::Vector3d>& input,
         Eigen::Vector3d attract = Eigen::Vector3d::Zero();
         double attract_weight = 0.0;
         for (size_t k = 0; k < neighbours.size(); ++k) {
-          const double r = std::max(std::sqrt(squared[k]), 1e-4 * h);
+          // The floor matters: x_i starts on an input point, whose 1/r weight would otherwise
+          // hold it there (a fixed point of the Weiszfeld step).
+          const double r = std::max(std::sqrt(squared[k]), 0.05 * h);
           const double a = std::exp(-squared[k] * inv) / r;
           attract += a * input[neighbours[k]];
           attract_weight += a;

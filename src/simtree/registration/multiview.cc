@@ -68,14 +68,15 @@ int MultiViewResult::RegisteredCount() const {
 std::vector<std::pair<int, int>> ViewPairs(int view_count, const MultiViewOptions& options) {
   std::vector<std::pair<int, int>> pairs;
   std::set<std::pair<int, int>> seen;
-  for (int k = 1; k <= std::max(1, options.neighbour_span); ++k) {
+  // Beyond view_count - 1 apart every pair has come up already.
+  const int span = std::min(std::max(1, options.neighbour_span), view_count - 1);
+  for (int k = 1; k <= span; ++k) {
     for (int i = 0; i < view_count; ++i) {
       int j = i + k;
       if (j >= view_count) {
         if (!options.closed_ring) continue;
         j -= view_count;
       }
-      if (j == i) continue;
       const auto key = std::minmax(i, j);
       if (!seen.insert(key).second) continue;
       pairs.emplace_back(j, i);  // source j into target i

@@ -24,9 +24,11 @@ double MedianPointSpacing(const open3d::geometry::PointCloud& cloud,
   std::vector<int> indices;
   std::vector<double> squared;
   for (size_t i : sample) {
-    if (tree.SearchKNN(cloud.points_[i], 2, indices, squared) < 2) continue;
-    // Exact duplicates (a point written twice) say nothing about the sampling density.
-    if (squared[1] > 0) distances.push_back(std::sqrt(squared[1]));
+    tree.SearchKNN(cloud.points_[i], options.neighbours, indices, squared);
+    // Exact duplicates (a point written twice) say nothing about the sampling density: the
+    // nearest neighbour at a distance above zero does.
+    const auto next = std::find_if(squared.begin(), squared.end(), [](double d) { return d > 0; });
+    if (next != squared.end()) distances.push_back(std::sqrt(*next));
   }
   if (distances.empty()) return 0.0;
   auto middle = distances.begin() + distances.size() / 2;

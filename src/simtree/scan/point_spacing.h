@@ -11,6 +11,8 @@ namespace simtree {
 
 struct SpacingOptions {
   size_t max_samples = 4000;  // points whose nearest neighbour is measured (a seeded sample)
+  // Neighbours searched per point: the nearest one that is not an exact duplicate counts.
+  int neighbours = 4;
   uint64_t seed = 1;
 };
 

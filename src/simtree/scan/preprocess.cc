@@ -170,7 +170,7 @@ PreprocessResult PreprocessView(const PointCloud& camera_cloud, const Preprocess
       cloud = Select(cloud, above);
     }
   }
-  if (cloud.points_.size() < 10) {
+  if (cloud.points_.size() < options.min_tree_points) {
     throw InputError(source, "",
                      fmt::format("expected a tree above the ground, got {} points off the ground",
                                  cloud.points_.size()));

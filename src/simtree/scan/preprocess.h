@@ -50,6 +50,9 @@ struct PreprocessOptions {
   double cluster_link_factor = 3.0;
   double cluster_attach_distance_m = 0.12;
 
+  // Fewer points than this off the ground: there is no tree in the view.
+  size_t min_tree_points = 100;
+
   uint64_t seed = 1;
 };
 
