@@ -161,7 +161,7 @@ int main(int argc, char** argv) {
   std::string species = "acer_rubrum", stand_in = "tree01.txt", json_path, markdown_path;
   std::vector<std::string> captures;
   fs::path cache = fs::temp_directory_path() / "simtree_registration_bench";
-  bool skip_baselines = false, skip_table1 = false;
+  bool skip_baselines = false, skip_table1 = false, ablations = false;
   app.add_option("--synth-seeds", synth_seeds,
                  "Synthetic captures to make (seeds from --first-seed)");
   app.add_option("--first-seed", first_seed, "First seed")->capture_default_str();
@@ -179,6 +179,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--skip-baselines", skip_baselines, "Ours only");
   app.add_flag("--skip-table1", skip_table1, "No Table I");
+  app.add_flag("--ablations", ablations, "Ours with each prior left out in turn");
   app.add_option("--json", json_path, "Every pair's outcome as JSON");
   app.add_option("--markdown", markdown_path, "The tables as markdown");
   CLI11_PARSE(app, argc, argv);
@@ -271,6 +272,32 @@ int main(int argc, char** argv) {
       record(scene, s, t, "ours without priors", p.target_from_source,
              prep_seconds[s] + prep_seconds[t] + p.seconds, ours[s], ours[t], p.ok);
     }
+    // Which prior helps and which hurts (an uneven ground is not one plane from every side).
+    if (ablations) {
+      std::vector<RegistrationView> groundless = ours;
+      for (RegistrationView& view : groundless) view.ground.reset();
+      PairOptions no_ground_constraint = default_options;
+      no_ground_constraint.ground_weight = 0.0;
+      PairOptions no_snap = default_options;
+      no_snap.snap_to_priors = false;
+      PairOptions no_trunk_constraint = default_options;
+      no_trunk_constraint.trunk_axis_weight = 0.0;
+      for (const auto& [s, t] : pairs) {
+        const double prep = prep_seconds[s] + prep_seconds[t];
+        PairResult r = RegisterPair(groundless[s], groundless[t], default_options);
+        record(scene, s, t, "ours, ground unused", r.target_from_source, prep + r.seconds, ours[s],
+               ours[t], r.ok);
+        r = RegisterPair(ours[s], ours[t], no_ground_constraint);
+        record(scene, s, t, "ours, no ground constraint", r.target_from_source, prep + r.seconds,
+               ours[s], ours[t], r.ok);
+        r = RegisterPair(ours[s], ours[t], no_snap);
+        record(scene, s, t, "ours, no snap", r.target_from_source, prep + r.seconds, ours[s],
+               ours[t], r.ok);
+        r = RegisterPair(ours[s], ours[t], no_trunk_constraint);
+        record(scene, s, t, "ours, no trunk constraint", r.target_from_source, prep + r.seconds,
+               ours[s], ours[t], r.ok);
+      }
+    }
 
     // Table I: the four coarse inputs to the paper's SAC-IA (no priors), coarse only.
     if (!skip_table1 && static_cast<int>(k) < table1_scenes) {
@@ -327,6 +354,10 @@ int main(int argc, char** argv) {
                                           "F-4PCS-ICP (PCL)",
                                           "Open3D FPFH-RANSAC+ICP",
                                           "ours without priors",
+                                          "ours, ground unused",
+                                          "ours, no ground constraint",
+                                          "ours, no snap",
+                                          "ours, no trunk constraint",
                                           "ours"};
   for (const std::string& method : order) {
     if (!by_method.count(method)) continue;

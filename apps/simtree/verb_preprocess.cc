@@ -1,6 +1,7 @@
 #include <filesystem>
 #include <memory>
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "cli_common.h"
@@ -14,6 +15,23 @@ namespace fs = std::filesystem;
 namespace simtree::cli {
 
 // Options shared by `preprocess` and `register` (which preprocesses a capture itself).
+// RefuseToOverwriteInputs, and also an existing folder inside the input (`--out capture/scans`
+// would replace the views themselves).
+void RefuseToReplaceInputs(const fs::path& output, const fs::path& input) {
+  RefuseToOverwriteInputs(output, {input});
+  std::error_code ec;
+  const fs::path out = fs::weakly_canonical(output, ec);
+  const fs::path in = fs::weakly_canonical(input, ec);
+  const fs::path rel = out.lexically_relative(in);
+  const bool inside = !rel.empty() && rel.native().rfind("..", 0) != 0;
+  if (inside && fs::exists(out)) {
+    throw InputError(output.string(), "",
+                     fmt::format("refusing to replace a folder inside the input {}; choose "
+                                 "another output",
+                                 input.string()));
+  }
+}
+
 void AddPreprocessOptions(CLI::App* verb, PreprocessOptions& options) {
   verb->add_option("--voxel", options.voxel_size_m,
                    "Voxel grid size in metres (0: --voxel-factor times the measured point spacing)")
@@ -59,7 +77,7 @@ void RegisterPreprocess(CLI::App& app) {
   verb->footer(Examples({"simtree preprocess scene/ --out clean/",
                          "simtree preprocess scene/ --out clean/ --voxel 0.01 --keep-clusters"}));
   verb->callback([args] {
-    RefuseToOverwriteInputs(args->output, {args->input});
+    RefuseToReplaceInputs(args->output, args->input);
     const auto views = LoadViews(args->input, args->preprocess);
     AtomicDirectory folder(args->output);
     WritePreprocessedViews(views, folder.path());

@@ -20,6 +20,7 @@ namespace fs = std::filesystem;
 namespace simtree::cli {
 
 void AddPreprocessOptions(CLI::App* verb, PreprocessOptions& options);
+void RefuseToReplaceInputs(const fs::path& output, const fs::path& input);
 
 void RegisterRegister(CLI::App& app) {
   struct Args {
@@ -71,7 +72,7 @@ void RegisterRegister(CLI::App& app) {
                 "simtree preprocess scene/ --out clean/ && simtree register clean/ --out reg/",
                 "simtree register scene/ --out reg/ --coarse entire_tree --no-priors"}));
   verb->callback([args] {
-    RefuseToOverwriteInputs(args->output, {args->input});
+    RefuseToReplaceInputs(args->output, args->input);
     const std::vector<PreprocessedView> preprocessed = LoadViews(args->input, args->preprocess);
 
     RegistrationViewOptions view_options;

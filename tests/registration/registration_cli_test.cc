@@ -32,8 +32,10 @@ const fs::path& QuickCapture() {
   return root;
 }
 
-fs::path Copy(const std::string& name) {
-  const fs::path dir = test::TempDir() / name;
+// A copy of the quick capture to spoil, in `tmp` (test::TempDir() empties its folder on every
+// call: call it once per test).
+fs::path Copy(const fs::path& tmp, const std::string& name) {
+  const fs::path dir = tmp / name;
   fs::copy(QuickCapture(), dir, fs::copy_options::recursive);
   return dir;
 }
@@ -59,8 +61,9 @@ TEST(RegisterCli, RegistersAQuickCaptureAndWritesEveryOutput) {
 }
 
 TEST(RegisterCli, PreprocessThenRegisterGivesTheSamePoses) {
-  const fs::path clean = test::TempDir() / "clean";
-  const fs::path reg = test::TempDir() / "reg";
+  const fs::path tmp = test::TempDir();
+  const fs::path clean = tmp / "clean";
+  const fs::path reg = tmp / "reg";
   auto r = test::RunCli("-q preprocess \"" + QuickCapture().string() + "\" --out \"" +
                         clean.string() + "\"");
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -72,7 +75,8 @@ TEST(RegisterCli, PreprocessThenRegisterGivesTheSamePoses) {
 }
 
 TEST(RegisterCli, BadViewsAreFlaggedNotMerged) {
-  const fs::path capture = Copy("capture");
+  const fs::path tmp = test::TempDir();
+  const fs::path capture = Copy(tmp, "capture");
   const fs::path scans = capture / "scans";
   // view_01: every depth pixel 0 (an empty view). view_02: the lower 60% of the depth image
   // blanked, so no trunk stands on the ground. view_03: intrinsics of another size.
@@ -86,7 +90,7 @@ TEST(RegisterCli, BadViewsAreFlaggedNotMerged) {
   k.height = 480;
   WriteIntrinsicsJson(k, scans / "view_03" / "intrinsics.json");
 
-  const fs::path out = test::TempDir() / "reg";
+  const fs::path out = tmp / "reg";
   const auto r =
       test::RunCli("register \"" + capture.string() + "\" --out \"" + out.string() + "\"");
   // Only view_00 is left: nothing to register it with, a clear error, and the reasons written.
@@ -101,19 +105,26 @@ TEST(RegisterCli, BadViewsAreFlaggedNotMerged) {
 }
 
 TEST(RegisterCli, NoViewsAtAllIsAnError) {
-  const fs::path empty = test::TempDir() / "empty";
+  const fs::path tmp = test::TempDir();
+  const fs::path empty = tmp / "empty";
   fs::create_directories(empty);
-  const auto r = test::RunCli("register \"" + empty.string() + "\" --out \"" +
-                              (test::TempDir() / "reg").string() + "\"");
+  const auto r =
+      test::RunCli("register \"" + empty.string() + "\" --out \"" + (tmp / "reg").string() + "\"");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_THAT(r.output, HasSubstr("expected views"));
   EXPECT_THAT(r.output, Not(HasSubstr("internal error")));
 }
 
 TEST(RegisterCli, RefusesToWriteOverItsInput) {
-  const auto r = test::RunCli("register \"" + QuickCapture().string() + "\" --out \"" +
-                              (QuickCapture() / "scans").string() + "\"");
-  EXPECT_NE(r.exit_code, 0);
+  // On a copy: a verb that did replace its input must not spoil the other tests' capture.
+  const fs::path capture = Copy(test::TempDir(), "capture");
+  for (const fs::path& out : {capture, capture / "scans"}) {
+    const auto r =
+        test::RunCli("register \"" + capture.string() + "\" --out \"" + out.string() + "\"");
+    EXPECT_NE(r.exit_code, 0) << out;
+    EXPECT_THAT(r.output, HasSubstr("refusing")) << out;
+  }
+  EXPECT_TRUE(fs::exists(capture / "scans" / "view_00" / "depth.png"));
 }
 
 }  // namespace
