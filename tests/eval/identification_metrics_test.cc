@@ -51,6 +51,27 @@ TEST(IdentificationMetrics, LinkErrorsAreRelativeAndMediansSkipWhatWasNotEstimat
   EXPECT_THAT(FormatLinkScores(s), HasSubstr("| M1 | ok | 1.2000 |"));
 }
 
+TEST(IdentificationMetrics, ARunnerUpModeIsReportedAndTheNearestStrongModeScored) {
+  ModalTruth truth;
+  ModalTruth::Link two_modes{0, 1, 1.8, 0.02};
+  two_modes.peaks = {{4, 1.8, 0.02, 0.01, 0.5}, {1, 1.0, 0.03, 0.02, 0.4}};
+  truth.links = {two_modes, {0, 2, 1.2, 0.03}};
+  MaterialsFile m;
+  m.links = {Link(0, 1, 1.01, 0.03, EstimateStatus::kOk), Link(0, 2, 0, 0, EstimateStatus::kFlat)};
+  m.links[1].value.message = "no motion above the noise";
+  const LinkScores s = ScoreLinks(m, truth);
+  ASSERT_EQ(s.links.size(), 2u);
+  // The runner-up (1.0 Hz) was found: far from the dominant, 1% from the runner-up.
+  EXPECT_NEAR(s.links[0].value.frequency_error, 1 - 1.01 / 1.8, 1e-12);
+  EXPECT_NEAR(s.links[0].nearest_mode_frequency_error, 0.01, 1e-12);
+  EXPECT_NEAR(s.links[0].runner_up_ratio, 0.8, 1e-12);
+  EXPECT_DOUBLE_EQ(s.links[0].runner_up_frequency_hz, 1.0);
+  // No peaks listed, no estimate: nothing invented.
+  EXPECT_EQ(s.links[1].runner_up_ratio, 0.0);
+  EXPECT_TRUE(std::isnan(s.links[1].nearest_mode_frequency_error));
+  EXPECT_EQ(s.links[1].message, "no motion above the noise");
+}
+
 TEST(IdentificationMetrics, BranchesAreScoredByTheirSource) {
   Tree tree;
   for (int b = 0; b < 3; ++b) {

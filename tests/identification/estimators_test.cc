@@ -168,6 +168,20 @@ TEST(Estimators, BadRecordsGiveAReasonAndNoNumbers) {
   expect_no_value(all_nan, EstimateStatus::kTooFewSamples, "0 valid samples");
 }
 
+TEST(Estimators, NoiseAloneIsFlatForNearlyEverySeed) {
+  // Two planes of white noise: no estimator may report a mode (a false alarm is an invented
+  // value). The flatness test compares the deviation with the second-difference noise level.
+  int flat = 0;
+  for (uint64_t seed = 1; seed <= 20; ++seed) {
+    DecayRecordOptions o;
+    o.noise_std = 0.4;
+    o.seed = seed;
+    flat += EstimateModes(MakeDecayRecord({{}, {}}, o), EstimatorKind::kDampedSinusoidFit)
+                .dominant.status == EstimateStatus::kFlat;
+  }
+  EXPECT_GE(flat, 19);
+}
+
 TEST(Estimators, HalfPowerPeakReadsTheBandOfAKnownLorentzian) {
   // A long, well-resolved decay: the paper's half-power reading is right when the record is long
   // enough (here 60 s of a 2 Hz mode with zeta 0.02).

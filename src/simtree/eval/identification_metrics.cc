@@ -73,10 +73,25 @@ LinkScores ScoreLinks(const MaterialsFile& materials, const ModalTruth& truth,
     s.parent = link.parent;
     s.child = link.child;
     s.label = link.label;
-    s.status = e ? e->status : EstimateStatus::kFailed;
+    // A link without an estimator's entry: its own status says why (a missing marker), if any.
+    const bool why = link.value.status != EstimateStatus::kOk;
+    s.status = e ? e->status : (why ? link.value.status : EstimateStatus::kFailed);
+    s.message =
+        e ? e->message : (why ? link.value.message : "the materials file holds no such estimator");
     const bool ok = e && e->status == EstimateStatus::kOk;
     s.value = Score(t->frequency_hz, t->damping_ratio, ok ? e->frequency_hz : kNaN,
                     ok ? e->damping_ratio : kNaN);
+    if (t->peaks.size() > 1 && t->peaks[0].strength > 0) {
+      s.runner_up_ratio = t->peaks[1].strength / t->peaks[0].strength;
+      s.runner_up_frequency_hz = t->peaks[1].frequency_hz;
+    }
+    s.nearest_mode_frequency_error = s.value.frequency_error;
+    for (const ModalTruth::ModePeak& p : t->peaks) {
+      if (ok && p.frequency_hz > 0) {
+        s.nearest_mode_frequency_error = std::min(s.nearest_mode_frequency_error,
+                                                  std::abs(e->frequency_hz / p.frequency_hz - 1.0));
+      }
+    }
     out.links.push_back(s);
   }
   std::vector<const ValueScore*> values;

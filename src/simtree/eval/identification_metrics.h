@@ -24,7 +24,16 @@ struct LinkScore {
   int parent = -1, child = 0;
   std::string label;
   EstimateStatus status = EstimateStatus::kOk;
+  std::string message;  // the estimator's note, or why there is no value
   ValueScore value;
+  // How clear the truth's dominant mode is: the runner-up's spectral peak over the dominant's
+  // (0 when the truth lists one mode). Near 1, noise or a neighbouring mode can swap the two.
+  double runner_up_ratio = 0.0;
+  double runner_up_frequency_hz = 0.0;
+  // |estimate / f - 1| for the nearest of the truth's strongest modes (its `peaks`): small when
+  // the estimate found a real mode of the link, not necessarily the dominant one. NaN without an
+  // estimate.
+  double nearest_mode_frequency_error = 0.0;
 };
 
 struct ScoreSummary {

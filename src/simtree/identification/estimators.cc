@@ -104,7 +104,10 @@ void EstimateSpectral(const SampledSignal& signal, EstimatorKind kind, double mi
 }
 
 // (c): one joint fit; the dominant mode is the strongest inside the band, each channel's the
-// strongest in that channel.
+// strongest in that channel. "Strongest" is what the paper's dominant frequency means: the highest
+// peak of the record's spectrum, which for a decaying mode is its amplitude times the integral of
+// its envelope over the record, a (1 - e^(-s T)) / s. A stiff twig's mode may start larger than the
+// tree's sway and still die out within a second; the sway then owns the spectrum.
 void EstimateFit(const SampledSignal& signal, double min_hz, double max_hz,
                  const EstimatorOptions& options, SignalEstimate& out) {
   DampedSinusoidFit fit = FitDampedSinusoids(signal, min_hz, max_hz, options);
@@ -132,24 +135,40 @@ void EstimateFit(const SampledSignal& signal, double min_hz, double max_hz,
     if (!fit.converged) e.message = fit.message;
     return e;
   };
+  // A pole the refinement pushed past `max_damping_ratio` models a drift or a burst of noise, not
+  // a mode: it is kept in the model but never reported.
   auto in_band = [&](const FittedMode& m) {
-    return m.frequency_hz >= min_hz && m.frequency_hz <= max_hz;
+    return m.frequency_hz >= min_hz && m.frequency_hz <= max_hz &&
+           m.damping_ratio <= options.max_damping_ratio;
   };
+  const double record_s = signal.duration_s();
+  auto peak = [&](const FittedMode& m, int channel) {
+    const double a = channel < 0 ? m.amplitude : m.channel_amplitude[channel];
+    const double s = m.decay_rate;
+    return a * (s * record_s > 1e-9 ? (1.0 - std::exp(-s * record_s)) / s : record_s);
+  };
+  // The strongest mode with enough periods in the record; only when there is none, the strongest
+  // slower one (reported as too short). A slow drift the model absorbed into a pole is not the
+  // swing the record holds several periods of.
   auto strongest = [&](int channel) -> const FittedMode* {
     const FittedMode* best = nullptr;
-    for (const FittedMode& m : fit.modes) {
-      if (!in_band(m)) continue;
-      const double a = channel < 0 ? m.amplitude : m.channel_amplitude[channel];
-      const double b =
-          !best ? -1 : (channel < 0 ? best->amplitude : best->channel_amplitude[channel]);
-      if (a > b) best = &m;
+    for (bool long_enough : {true, false}) {
+      for (const FittedMode& m : fit.modes) {
+        if (!in_band(m) || TooShort(m.frequency_hz, record_s, options) == long_enough) continue;
+        if (!best || peak(m, channel) > peak(*best, channel)) best = &m;
+      }
+      if (best) break;
     }
     return best;
   };
   const FittedMode* dominant = strongest(-1);
   if (!dominant) {
-    out.dominant = Failed(EstimateStatus::kNoPeak,
-                          fit.message.empty() ? "no mode inside the band" : fit.message);
+    out.dominant =
+        Failed(EstimateStatus::kNoPeak,
+               !fit.message.empty()
+                   ? fit.message
+                   : fmt::format("no mode between {:.2f} and {:.2f} Hz damped less than zeta {:g}",
+                                 min_hz, max_hz, options.max_damping_ratio));
   } else {
     out.dominant = from_mode(*dominant, -1);
     int channel = 0;
@@ -284,16 +303,20 @@ SignalEstimate EstimateModes(const SampledSignal& input, EstimatorKind estimator
   bool moving = false;
   double largest_spread = 0;
   for (int c = 0; c < signal.channels(); ++c) {
-    double sum = 0, sum2 = 0;
+    // Two passes: a constant record must give exactly zero, not a rounding residue.
+    double sum = 0;
     int count = 0;
     for (int i = 0; i < signal.size(); ++i) {
       if (!signal.valid[i]) continue;
       sum += signal.values(i, c);
-      sum2 += signal.values(i, c) * signal.values(i, c);
       ++count;
     }
     const double mean = sum / count;
-    const double spread = std::sqrt(std::max(0.0, sum2 / count - mean * mean));
+    double sum2 = 0;
+    for (int i = 0; i < signal.size(); ++i) {
+      if (signal.valid[i]) sum2 += (signal.values(i, c) - mean) * (signal.values(i, c) - mean);
+    }
+    const double spread = std::sqrt(sum2 / count);
     largest_spread = std::max(largest_spread, spread);
     if (spread > options.flat_ratio * noise[c] && spread > 1e-12 * (1 + std::abs(mean))) {
       moving = true;
