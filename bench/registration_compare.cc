@@ -1,0 +1,416 @@
+// Issue 6's side by side, one command: the paper's Table I (four coarse inputs to SAC-IA) and
+// Table II (PCA-ICP, F-4PCS-ICP with PCL's FPCS, ours), plus Open3D's FPFH-RANSAC + ICP, on view
+// pairs 36-180 degrees apart of synthetic captures (`simtree synth`, with ground truth), or of
+// the stand-in scene of the tests. For every pair: the paper's columns (time, RMSE, match rate)
+// and the true errors at the tree (rotation, RMS displacement of the true tree points).
+//
+//   registration_compare --synth-seeds 10 --markdown table.md --json pairs.json
+//   registration_compare --captures scene1/ scene2/
+//   registration_compare --stand-in tree01.txt --seeds 3
+//
+// Timings: per pair, everything a method computes for that pair (for ours: preparing both views,
+// i.e. normals, trunk, skeleton and features, plus coarse and fine registration). Preprocessing
+// (ground, outliers, voxel grid), shared by all methods, is not counted. The load average is
+// printed; do not trust timings taken above 1.5.
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <open3d/utility/Logging.h>
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "registration/stand_in_scene.h"
+#include "registration_pcl.h"
+#include "simtree/core/error.h"
+#include "simtree/core/tree_json.h"
+#include "simtree/eval/registration_metrics.h"
+#include "simtree/io/ground_truth.h"
+#include "simtree/registration/baselines.h"
+#include "simtree/registration/pairwise.h"
+#include "simtree/scan/capture_views.h"
+#include "simtree/synth/synth_capture.h"
+
+namespace fs = std::filesystem;
+using namespace simtree;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+double Since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// One capture with its truth, preprocessed.
+struct Scene {
+  std::string label;
+  std::vector<PreprocessedView> views;
+  std::vector<ViewPose> poses;
+  std::vector<Eigen::Vector3d> tree_points;
+};
+
+Scene FromCapture(const fs::path& root, const std::string& label) {
+  Scene scene;
+  scene.label = label;
+  scene.views = PreprocessCaptureViews(OpenCapture(root));
+  scene.poses = ReadScanPoses(root / "gt" / "scan_poses.json");
+  scene.tree_points = TreeSamplePoints(ReadTreeJson(root / "gt" / "tree.json"));
+  if (scene.poses.size() != scene.views.size()) {
+    throw InputError(root.string(), "gt/scan_poses.json", "expected one pose per view");
+  }
+  return scene;
+}
+
+Scene FromStandIn(const std::string& tree_file, uint64_t seed) {
+  Scene scene;
+  scene.label = fmt::format("stand-in {} seed {}", tree_file, seed);
+  const Tree tree = test::LoadDemoTree(fs::path(SIMTREE_SHARED_DATA_DIR) / "authors-demo" /
+                                       "tree_model" / tree_file);
+  scene.tree_points = TreeSamplePoints(tree);
+  test::StandInOptions options;
+  options.seed = seed;
+  Eigen::Vector3d lo, hi;
+  tree.Bounds(&lo, &hi);
+  scene.poses = test::StandInPoses(hi.z(), options);
+  for (size_t v = 0; v < scene.poses.size(); ++v) {
+    const RgbdImage image =
+        test::RenderStandInView(tree, scene.poses[v].world_from_camera, options, seed * 1000 + v);
+    PreprocessedView view;
+    view.name = scene.poses[v].name;
+    view.result = PreprocessView(DepthToCloud(image), {}, view.name);
+    scene.views.push_back(std::move(view));
+  }
+  return scene;
+}
+
+// One method's outcome on one pair.
+struct Outcome {
+  std::string method;
+  std::string scene;
+  std::string source, target;
+  int gap_deg = 0;       // nearest of 36, 72, 108, 144, 180
+  double angle_deg = 0;  // the true turn between the views
+  double seconds = 0;
+  double rmse_m = 0;      // the paper's RMSE over matched points
+  double match_rate = 0;  // the paper's match rate
+  PoseError error;
+  bool accepted = true;  // for ours: passed its own checks
+};
+
+int GapBin(double angle_deg) {
+  return 36 * std::clamp(static_cast<int>(std::lround(angle_deg / 36.0)), 1, 5);
+}
+
+struct Summary {
+  int pairs = 0;
+  double time_ms = 0, rmse_mm = 0, match = 0, rotation_deg = 0, tree_mm = 0, right = 0;
+  double accepted_wrong = 0;
+};
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+}
+
+Summary Summarise(const std::vector<Outcome>& outcomes) {
+  Summary s;
+  std::vector<double> t, r, m, rot, tree;
+  int right = 0, accepted_wrong = 0;
+  for (const Outcome& o : outcomes) {
+    t.push_back(1e3 * o.seconds);
+    r.push_back(1e3 * o.rmse_m);
+    m.push_back(100 * o.match_rate);
+    rot.push_back(o.error.rotation_deg);
+    tree.push_back(1e3 * o.error.tree_rms_m);
+    right += o.error.Within();
+    accepted_wrong += o.accepted && !o.error.Within();
+  }
+  s.pairs = static_cast<int>(outcomes.size());
+  s.time_ms = Median(t);
+  s.rmse_mm = Median(r);
+  s.match = Median(m);
+  s.rotation_deg = Median(rot);
+  s.tree_mm = Median(tree);
+  s.right = outcomes.empty() ? NAN : 100.0 * right / outcomes.size();
+  s.accepted_wrong = accepted_wrong;
+  return s;
+}
+
+std::string LoadAverage() {
+  std::ifstream in("/proc/loadavg");
+  std::string one;
+  in >> one;
+  return one;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Registration side by side: paper Tables I and II, ours and Open3D, against truth"};
+  int synth_seeds = 0, stand_in_seeds = 0, first_seed = 1, table1_scenes = 3, baseline_scenes = 100;
+  std::string species = "acer_rubrum", stand_in = "tree01.txt", json_path, markdown_path;
+  std::vector<std::string> captures;
+  fs::path cache = fs::temp_directory_path() / "simtree_registration_bench";
+  bool skip_baselines = false, skip_table1 = false, ablations = false;
+  app.add_option("--synth-seeds", synth_seeds,
+                 "Synthetic captures to make (seeds from --first-seed)");
+  app.add_option("--first-seed", first_seed, "First seed")->capture_default_str();
+  app.add_option("--species", species, "Species of the synthetic trees")->capture_default_str();
+  app.add_option("--captures", captures, "Capture folders with gt/ (e.g. from `simtree synth`)");
+  app.add_option("--stand-in", stand_in, "Authors' tree for the stand-in scene")
+      ->capture_default_str();
+  app.add_option("--seeds", stand_in_seeds, "Stand-in scenes to make");
+  app.add_option("--cache", cache, "Where synthetic captures are kept between runs")
+      ->capture_default_str();
+  app.add_option("--table1-scenes", table1_scenes,
+                 "Scenes Table I runs on (its entire-tree row is slow)")
+      ->capture_default_str();
+  app.add_option("--baseline-scenes", baseline_scenes, "Scenes the baselines run on")
+      ->capture_default_str();
+  app.add_flag("--skip-baselines", skip_baselines, "Ours only");
+  app.add_flag("--skip-table1", skip_table1, "No Table I");
+  app.add_flag("--ablations", ablations, "Ours with each prior left out in turn");
+  app.add_option("--json", json_path, "Every pair's outcome as JSON");
+  app.add_option("--markdown", markdown_path, "The tables as markdown");
+  CLI11_PARSE(app, argc, argv);
+  open3d::utility::SetVerbosityLevel(open3d::utility::VerbosityLevel::Error);
+  const std::string load_start = LoadAverage();
+
+  // Scenes.
+  std::vector<Scene> scenes;
+  for (int s = 0; s < synth_seeds; ++s) {
+    const uint64_t seed = first_seed + s;
+    const fs::path dir = cache / fmt::format("{}_seed{}", species, seed);
+    if (!fs::exists(dir / "gt" / "scan_poses.json")) {
+      SynthOptions options;
+      options.species = species;
+      options.seed = seed;
+      options.duration_s = 4.5;  // the pull stream is not used here: just past its release
+      options.contact_sheet = false;
+      fmt::print(stderr, "synth {} seed {} -> {}\n", species, seed, dir.string());
+      RunSynth(options, dir);
+    }
+    scenes.push_back(FromCapture(dir, fmt::format("synth {} seed {}", species, seed)));
+  }
+  for (const std::string& c : captures) scenes.push_back(FromCapture(c, c));
+  for (int s = 0; s < stand_in_seeds; ++s) scenes.push_back(FromStandIn(stand_in, first_seed + s));
+  if (scenes.empty()) {
+    fmt::print(stderr, "no scenes: give --synth-seeds, --captures or --seeds\n");
+    return 2;
+  }
+
+  const PairOptions default_options;
+  std::vector<Outcome> outcomes;
+  auto record = [&](const Scene& scene, size_t s, size_t t, const std::string& method,
+                    const Eigen::Isometry3d& transform, double seconds, const RegistrationView& vs,
+                    const RegistrationView& vt, bool accepted) {
+    Outcome o;
+    o.method = method;
+    o.scene = scene.label;
+    o.source = scene.views[s].name;
+    o.target = scene.views[t].name;
+    o.angle_deg = ViewAngleDeg(scene.poses[s].world_from_camera, scene.poses[t].world_from_camera);
+    o.gap_deg = GapBin(o.angle_deg);
+    o.seconds = seconds;
+    const Overlap match = PaperMatch(vs, vt, transform, default_options);
+    o.rmse_m = match.rmse_m;
+    o.match_rate = match.share;
+    o.error = PairPoseError(transform, scene.poses[s].world_from_camera,
+                            scene.poses[t].world_from_camera, scene.tree_points);
+    o.accepted = accepted;
+    outcomes.push_back(o);
+  };
+
+  const std::vector<CoarseInput> table1_inputs = {CoarseInput::kEntireTree, CoarseInput::kKeyRegion,
+                                                  CoarseInput::kTreeSkeleton,
+                                                  CoarseInput::kKeyRegionSkeleton};
+  for (size_t k = 0; k < scenes.size(); ++k) {
+    const Scene& scene = scenes[k];
+    fmt::print(stderr, "{}: {} views\n", scene.label, scene.views.size());
+    const size_t n = scene.views.size();
+    auto prepare = [&](const RegistrationViewOptions& options, std::vector<double>& seconds) {
+      std::vector<RegistrationView> views(n);
+      seconds.assign(n, 0.0);
+      for (size_t v = 0; v < n; ++v) {
+        if (!scene.views[v].result) {
+          views[v].name = scene.views[v].name;
+          views[v].failure = scene.views[v].failure;
+          continue;
+        }
+        const auto start = Clock::now();
+        views[v] = PrepareView(scene.views[v].name, *scene.views[v].result, options);
+        seconds[v] = Since(start);
+      }
+      return views;
+    };
+    std::vector<double> prep_seconds;
+    const std::vector<RegistrationView> ours = prepare({}, prep_seconds);
+    std::vector<std::pair<size_t, size_t>> pairs;
+    for (size_t s = 0; s < n; ++s) {
+      for (size_t t = s + 1; t < n; ++t) pairs.emplace_back(t, s);
+    }
+
+    // Ours, and ours without the priors (the paper's method as written, same code otherwise).
+    PairOptions paper_options;
+    paper_options.up_prior = paper_options.center_prior = paper_options.snap_to_priors = false;
+    paper_options.trunk_axis_weight = paper_options.ground_weight = 0.0;
+    for (const auto& [s, t] : pairs) {
+      const PairResult r = RegisterPair(ours[s], ours[t], default_options);
+      record(scene, s, t, "ours", r.target_from_source,
+             prep_seconds[s] + prep_seconds[t] + r.seconds, ours[s], ours[t], r.ok);
+      const PairResult p = RegisterPair(ours[s], ours[t], paper_options);
+      record(scene, s, t, "ours without priors", p.target_from_source,
+             prep_seconds[s] + prep_seconds[t] + p.seconds, ours[s], ours[t], p.ok);
+    }
+    // Which prior helps and which hurts (an uneven ground is not one plane from every side).
+    if (ablations) {
+      std::vector<RegistrationView> groundless = ours;
+      for (RegistrationView& view : groundless) view.ground.reset();
+      PairOptions no_ground_constraint = default_options;
+      no_ground_constraint.ground_weight = 0.0;
+      PairOptions no_snap = default_options;
+      no_snap.snap_to_priors = false;
+      PairOptions no_trunk_constraint = default_options;
+      no_trunk_constraint.trunk_axis_weight = 0.0;
+      for (const auto& [s, t] : pairs) {
+        const double prep = prep_seconds[s] + prep_seconds[t];
+        PairResult r = RegisterPair(groundless[s], groundless[t], default_options);
+        record(scene, s, t, "ours, ground unused", r.target_from_source, prep + r.seconds, ours[s],
+               ours[t], r.ok);
+        r = RegisterPair(ours[s], ours[t], no_ground_constraint);
+        record(scene, s, t, "ours, no ground constraint", r.target_from_source, prep + r.seconds,
+               ours[s], ours[t], r.ok);
+        r = RegisterPair(ours[s], ours[t], no_snap);
+        record(scene, s, t, "ours, no snap", r.target_from_source, prep + r.seconds, ours[s],
+               ours[t], r.ok);
+        r = RegisterPair(ours[s], ours[t], no_trunk_constraint);
+        record(scene, s, t, "ours, no trunk constraint", r.target_from_source, prep + r.seconds,
+               ours[s], ours[t], r.ok);
+      }
+    }
+
+    // Table I: the four coarse inputs to the paper's SAC-IA (no priors), coarse only.
+    if (!skip_table1 && static_cast<int>(k) < table1_scenes) {
+      PairOptions coarse_only = paper_options;
+      coarse_only.run_icp = false;
+      for (CoarseInput input : table1_inputs) {
+        RegistrationViewOptions options;
+        options.coarse_input = input;
+        std::vector<double> seconds;
+        const auto views = prepare(options, seconds);
+        for (const auto& [s, t] : pairs) {
+          const PairResult r = RegisterPair(views[s], views[t], coarse_only);
+          record(scene, s, t, std::string("table1 ") + ToString(input), r.target_from_source,
+                 seconds[s] + seconds[t] + r.seconds, ours[s], ours[t], r.ok);
+        }
+      }
+    }
+
+    // Table II's baselines and Open3D's.
+    if (!skip_baselines && static_cast<int>(k) < baseline_scenes) {
+      for (const auto& [s, t] : pairs) {
+        if (!ours[s].cloud || !ours[t].cloud) continue;
+        BaselineOptions options;
+        options.spacing_m = std::max(ours[s].spacing_m, ours[t].spacing_m);
+        const auto& cs = *ours[s].cloud;
+        const auto& ct = *ours[t].cloud;
+        const BaselineResult pca = PcaIcp(cs, ct, options);
+        record(scene, s, t, "PCA-ICP", pca.target_from_source, pca.seconds, ours[s], ours[t], true);
+        const BaselineResult fpcs = bench::Fpcs4PcsIcp(cs, ct, options);
+        record(scene, s, t, "F-4PCS-ICP (PCL)", fpcs.target_from_source, fpcs.seconds, ours[s],
+               ours[t], true);
+        const BaselineResult o3d = Open3dFpfhRansacIcp(cs, ct, options);
+        record(scene, s, t, "Open3D FPFH-RANSAC+ICP", o3d.target_from_source, o3d.seconds, ours[s],
+               ours[t], true);
+      }
+    }
+  }
+
+  // Tables.
+  std::map<std::string, std::map<int, std::vector<Outcome>>> by_method;
+  for (const Outcome& o : outcomes) by_method[o.method][o.gap_deg].push_back(o);
+  std::string md =
+      fmt::format("Scenes: {} ({} views each); load average {} at the start, {} at the end.\n\n",
+                  scenes.size(), scenes.front().views.size(), load_start, LoadAverage());
+  md +=
+      "| method | angle | pairs | time (ms) | RMSE (mm) | match rate | rotation error (deg) | tree "
+      "RMS (mm) | right (rot < 2 deg, tree < 2 cm) |\n| --- | --- | --- | --- | --- | --- | --- | "
+      "--- | --- |\n";
+  const std::vector<std::string> order = {"table1 entire_tree",
+                                          "table1 key_region",
+                                          "table1 tree_skeleton",
+                                          "table1 key_region_skeleton",
+                                          "PCA-ICP",
+                                          "F-4PCS-ICP (PCL)",
+                                          "Open3D FPFH-RANSAC+ICP",
+                                          "ours without priors",
+                                          "ours, ground unused",
+                                          "ours, no ground constraint",
+                                          "ours, no snap",
+                                          "ours, no trunk constraint",
+                                          "ours"};
+  for (const std::string& method : order) {
+    if (!by_method.count(method)) continue;
+    std::vector<Outcome> all;
+    for (const auto& [gap, list] : by_method[method]) {
+      const Summary s = Summarise(list);
+      md += fmt::format(
+          "| {} | {} | {} | {:.0f} | {:.2f} | {:.1f}% | {:.2f} | {:.1f} | {:.0f}% |\n", method, gap,
+          s.pairs, s.time_ms, s.rmse_mm, s.match, s.rotation_deg, s.tree_mm, s.right);
+      all.insert(all.end(), list.begin(), list.end());
+    }
+    const Summary s = Summarise(all);
+    md += fmt::format(
+        "| **{}** | all | {} | {:.0f} | {:.2f} | {:.1f}% | {:.2f} | {:.1f} | {:.0f}% |\n", method,
+        s.pairs, s.time_ms, s.rmse_mm, s.match, s.rotation_deg, s.tree_mm, s.right);
+  }
+  // Ours: how honest its own checks are.
+  if (by_method.count("ours")) {
+    int accepted = 0, accepted_wrong = 0, rejected_right = 0, total = 0;
+    for (const auto& [gap, list] : by_method["ours"]) {
+      for (const Outcome& o : list) {
+        ++total;
+        accepted += o.accepted;
+        accepted_wrong += o.accepted && !o.error.Within();
+        rejected_right += !o.accepted && o.error.Within();
+      }
+    }
+    md += fmt::format(
+        "\nOurs' own checks: {} of {} pairs accepted; {} accepted but wrong by the truth, {} "
+        "refused though right.\n",
+        accepted, total, accepted_wrong, rejected_right);
+  }
+  fmt::print("{}", md);
+  if (!markdown_path.empty()) std::ofstream(markdown_path) << md;
+  if (!json_path.empty()) {
+    nlohmann::ordered_json doc = nlohmann::ordered_json::array();
+    for (const Outcome& o : outcomes) {
+      doc.push_back({{"method", o.method},
+                     {"scene", o.scene},
+                     {"source", o.source},
+                     {"target", o.target},
+                     {"angle_deg", o.angle_deg},
+                     {"gap_deg", o.gap_deg},
+                     {"time_ms", 1e3 * o.seconds},
+                     {"rmse_mm", 1e3 * o.rmse_m},
+                     {"match_rate", o.match_rate},
+                     {"rotation_error_deg", o.error.rotation_deg},
+                     {"tree_rms_mm", 1e3 * o.error.tree_rms_m},
+                     {"centroid_error_mm", 1e3 * o.error.centroid_m},
+                     {"right", o.error.Within()},
+                     {"accepted", o.accepted}});
+    }
+    std::ofstream(json_path) << doc.dump(1) << "\n";
+  }
+  return 0;
+}

@@ -1,0 +1,54 @@
+#pragma once
+// The registration methods a user might pick instead of ours, for side-by-side comparisons
+// (bench/registration_compare.cc): the paper's PCA-ICP (Table II), and Open3D's FPFH-RANSAC
+// followed by its point-to-plane ICP. (F-4PCS-ICP needs PCL, which only bench/ links.) Each takes
+// the same preprocessed views (camera frame, camera-oriented normals) and computes everything it
+// needs itself, so its time is the whole pair's.
+
+#include <string>
+
+#include <open3d/geometry/PointCloud.h>
+#include <Eigen/Geometry>
+
+namespace simtree {
+
+struct BaselineResult {
+  Eigen::Isometry3d target_from_source = Eigen::Isometry3d::Identity();
+  Eigen::Isometry3d coarse = Eigen::Isometry3d::Identity();  // before ICP
+  double coarse_seconds = 0.0;
+  double seconds = 0.0;  // features + coarse + ICP
+  double fitness = 0.0;  // Open3D's: share of source points with a correspondence
+};
+
+struct BaselineOptions {
+  double spacing_m = 0.01;  // the clouds' point spacing: distances are multiples of it
+  double feature_voxel_factor = 2.0;
+  double normal_radius_factor = 2.0;    // of the feature voxel
+  double feature_radius_factor = 5.0;   // of the feature voxel
+  double ransac_distance_factor = 1.5;  // of the feature voxel
+  int ransac_iterations = 100000;
+  double ransac_confidence = 0.999;
+  // Open3D point-to-plane ICP at these distances (in point spacings), coarse to fine.
+  std::vector<double> icp_distance_factors = {6.0, 3.0, 1.5};
+  int icp_iterations = 30;
+  int seed = 1;
+};
+
+// PCA-ICP: centroids and principal axes aligned (of the four proper sign choices of the axes,
+// the one whose ICP overlaps most), then Open3D's point-to-plane ICP.
+BaselineResult PcaIcp(const open3d::geometry::PointCloud& source,
+                      const open3d::geometry::PointCloud& target, const BaselineOptions& options);
+
+// Open3D: FPFH on voxel-downsampled clouds, RANSAC on feature matches (mutual filter, edge-length
+// and distance checkers), then its point-to-plane ICP.
+BaselineResult Open3dFpfhRansacIcp(const open3d::geometry::PointCloud& source,
+                                   const open3d::geometry::PointCloud& target,
+                                   const BaselineOptions& options);
+
+// Open3D's point-to-plane ICP from `initial`, coarse to fine (the ICP the baselines share).
+Eigen::Isometry3d Open3dIcp(const open3d::geometry::PointCloud& source,
+                            const open3d::geometry::PointCloud& target,
+                            const Eigen::Isometry3d& initial, const BaselineOptions& options,
+                            double* fitness = nullptr);
+
+}  // namespace simtree

@@ -1,0 +1,300 @@
+#include "simtree/registration/pairwise.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <optional>
+
+#include <fmt/format.h>
+
+namespace simtree {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / std::numbers::pi;
+}
+
+// Distance between two lines (point, unit direction) measured at point `at` on the second.
+double LineOffsetAt(const Eigen::Vector3d& p1, const Eigen::Vector3d& d1,
+                    const Eigen::Vector3d& at) {
+  const Eigen::Vector3d v = at - p1;
+  return (v - v.dot(d1) * d1).norm();
+}
+
+double Spacing(const RegistrationView& source, const RegistrationView& target) {
+  return std::max(source.spacing_m, target.spacing_m);
+}
+
+// Moves a coarse result (keeping its rotation) so that the trunk axes meet and the grounds
+// coincide: the shift SAC-IA gets from skeleton points is off by what one-sided views bias, the
+// cylinder and the plane are not.
+Eigen::Isometry3d SnapToPriors(Eigen::Isometry3d t, const RegistrationView& source,
+                               const RegistrationView& target,
+                               const std::optional<SharedKeyRegion>& shared) {
+  const bool cylinders =
+      source.trunk && target.trunk && source.trunk->cylinder && target.trunk->cylinder;
+  if (cylinders && shared) {
+    const Eigen::Vector3d d = target.trunk->cylinder->axis;
+    Eigen::Vector3d gap = shared->target.center - t * shared->source.center;
+    gap -= gap.dot(d) * d;  // across the axis only
+    t.translation() += gap;
+  }
+  if (source.ground && target.ground) {
+    Eigen::Vector3d foot = source.trunk ? source.trunk->base : source.cloud->GetCenter();
+    foot -= source.ground->SignedDistance(foot) * source.ground->normal;
+    t.translation() -= target.ground->SignedDistance(t * foot) * target.ground->normal;
+  }
+  return t;
+}
+
+}  // namespace
+
+double CoarseOverlap(const open3d::geometry::PointCloud& source,
+                     const open3d::geometry::PointCloud& target,
+                     const Eigen::Isometry3d& target_from_source, double distance_m) {
+  if (source.points_.empty() || target.points_.empty()) return 0.0;
+  const open3d::geometry::KDTreeFlann tree(target);
+  return MeasureOverlap(source, target, tree, target_from_source, distance_m).share;
+}
+
+std::optional<SharedKeyRegion> SharedKeyRegions(const RegistrationView& source,
+                                                const RegistrationView& target) {
+  if (!source.trunk || !target.trunk || !source.key_region || !target.key_region) {
+    return std::nullopt;
+  }
+  const bool use_ground = source.ground && target.ground;
+  SharedKeyRegion shared;
+  shared.height_m = std::min(HeightOf(source, source.trunk->branch_point, use_ground),
+                             HeightOf(target, target.trunk->branch_point, use_ground));
+  const auto a = TrunkPointAtHeight(source, shared.height_m, use_ground);
+  const auto b = TrunkPointAtHeight(target, shared.height_m, use_ground);
+  if (!a || !b) return std::nullopt;
+  const double radius = std::max(source.key_region->radius_m, target.key_region->radius_m);
+  shared.source = KeyRegion{*a, radius};
+  shared.target = KeyRegion{*b, radius};
+  return shared;
+}
+
+CoarseSubset SelectCoarse(const RegistrationView& view, const KeyRegion* region) {
+  CoarseSubset subset;
+  std::vector<size_t> inside;
+  if (region) {
+    inside = PointsInside(view.coarse, *region);
+  } else {
+    inside.resize(view.coarse.points_.size());
+    for (size_t i = 0; i < inside.size(); ++i) inside[i] = i;
+  }
+  subset.points = *view.coarse.SelectByIndex(inside);
+  if (view.features) {
+    subset.features.Resize(static_cast<int>(view.features->Dimension()),
+                           static_cast<int>(inside.size()));
+    for (size_t k = 0; k < inside.size(); ++k) {
+      subset.features.data_.col(k) = view.features->data_.col(inside[k]);
+    }
+  }
+  return subset;
+}
+
+Overlap PaperMatch(const RegistrationView& source, const RegistrationView& target,
+                   const Eigen::Isometry3d& target_from_source, const PairOptions& options) {
+  return MeasureOverlap(*source.cloud, *target.cloud, *target.cloud_tree, target_from_source,
+                        options.match_distance_factor * Spacing(source, target));
+}
+
+void CheckPair(const RegistrationView& source, const RegistrationView& target,
+               const PairOptions& options, PairResult& result) {
+  const Eigen::Isometry3d& t = result.target_from_source;
+  std::vector<std::string> problems;
+  result.up_disagreement_deg = kNaN;
+  result.ground_offset_m = kNaN;
+  result.trunk_offset_m = kNaN;
+  if (source.ground && target.ground) {
+    result.up_disagreement_deg =
+        AngleDeg(t.linear() * source.ground->normal, target.ground->normal);
+    if (result.up_disagreement_deg > options.max_up_disagreement_deg) {
+      problems.push_back(fmt::format("the grounds tilt {:.1f} deg apart (at most {:.1f})",
+                                     result.up_disagreement_deg, options.max_up_disagreement_deg));
+    }
+    // A point of the source ground, in the target frame, against the target ground.
+    const Eigen::Vector3d on_source = -source.ground->offset * source.ground->normal;
+    result.ground_offset_m = std::abs(target.ground->SignedDistance(t * on_source));
+    if (result.ground_offset_m > options.max_ground_offset_m) {
+      problems.push_back(fmt::format("the grounds are {:.0f} mm apart (at most {:.0f})",
+                                     1e3 * result.ground_offset_m,
+                                     1e3 * options.max_ground_offset_m));
+    }
+  }
+  if (source.trunk && target.trunk && source.trunk->cylinder && target.trunk->cylinder) {
+    const TrunkCylinder& a = *source.trunk->cylinder;
+    const TrunkCylinder& b = *target.trunk->cylinder;
+    const double tilt = AngleDeg(t.linear() * a.axis, b.axis);
+    if (tilt > options.max_cylinder_tilt_deg) {
+      problems.push_back(fmt::format("the trunk cylinders tilt {:.1f} deg apart (at most {:.1f})",
+                                     tilt, options.max_cylinder_tilt_deg));
+    }
+    result.trunk_offset_m = LineOffsetAt(b.point, b.axis, t * a.point);
+    if (result.trunk_offset_m > options.max_cylinder_offset_m) {
+      problems.push_back(fmt::format("the trunk cylinders are {:.0f} mm apart (at most {:.0f})",
+                                     1e3 * result.trunk_offset_m,
+                                     1e3 * options.max_cylinder_offset_m));
+    }
+  } else if (source.trunk && target.trunk) {
+    const double tilt = AngleDeg(t.linear() * source.trunk->axis, target.trunk->axis);
+    if (tilt > options.max_trunk_tilt_deg) {
+      problems.push_back(fmt::format("the trunks tilt {:.1f} deg apart (at most {:.1f})", tilt,
+                                     options.max_trunk_tilt_deg));
+    }
+    result.trunk_offset_m =
+        LineOffsetAt(t * source.trunk->branch_point, t.linear() * source.trunk->axis,
+                     target.trunk->branch_point);
+    const double limit =
+        std::max(0.05, options.max_trunk_offset_factor *
+                           std::max(source.trunk->visible_width_m, target.trunk->visible_width_m));
+    if (result.trunk_offset_m > limit) {
+      problems.push_back(fmt::format("the trunks are {:.0f} mm apart (at most {:.0f})",
+                                     1e3 * result.trunk_offset_m, 1e3 * limit));
+    }
+  }
+  if (result.coarse_overlap < options.min_coarse_overlap) {
+    problems.push_back(fmt::format("only {:.0f}% of the {} matches (at least {:.0f}%)",
+                                   100 * result.coarse_overlap, ToString(source.coarse_input),
+                                   100 * options.min_coarse_overlap));
+  }
+  if (options.run_icp && result.fine.fitness < options.min_fitness) {
+    problems.push_back(fmt::format("only {:.0f}% of points overlap (at least {:.0f}%)",
+                                   100 * result.fine.fitness, 100 * options.min_fitness));
+  }
+  result.ok = problems.empty();
+  if (result.ok) {
+    result.status = "ok";
+  } else {
+    result.status = problems.front();
+    for (size_t i = 1; i < problems.size(); ++i) result.status += "; " + problems[i];
+  }
+}
+
+PairResult RegisterPair(const RegistrationView& source, const RegistrationView& target,
+                        const PairOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  PairResult result;
+  result.source = source.name;
+  result.target = target.name;
+  for (const RegistrationView* view : {&source, &target}) {
+    if (!view->CanRegister()) {
+      result.status = fmt::format("{}: {}", view->name, view->failure);
+      return result;
+    }
+  }
+
+  // What coarse registration aligns: the coarse points inside the pair's key regions, or all.
+  std::optional<SharedKeyRegion> shared;
+  if (UsesKeyRegion(source.coarse_input)) {
+    shared = SharedKeyRegions(source, target);
+    if (!shared) {
+      result.status = "no key region shared by both views (a trunk axis lies flat)";
+      return result;
+    }
+  }
+  const CoarseSubset source_coarse = SelectCoarse(source, shared ? &shared->source : nullptr);
+  const CoarseSubset target_coarse = SelectCoarse(target, shared ? &shared->target : nullptr);
+
+  SacIaPrior prior;
+  if (options.up_prior) {
+    // One physical direction seen from both views: the ground's normal when both see the
+    // ground, else the trunk's axis.
+    if (source.ground && target.ground) {
+      prior.source_up = source.ground->normal;
+      prior.target_up = target.ground->normal;
+    } else if (source.trunk && target.trunk) {
+      prior.source_up = TrunkAxis(source);
+      prior.target_up = TrunkAxis(target);
+    }
+  }
+  if (options.center_prior && shared) {
+    prior.source_center = shared->source.center;
+    prior.target_center = shared->target.center;
+    prior.max_center_offset_m = options.max_center_offset_share * shared->source.radius_m;
+  }
+  result.coarse = SampleConsensusInitialAlignment(source_coarse.points, source_coarse.features,
+                                                  target_coarse.points, target_coarse.features,
+                                                  prior, options.sac_ia);
+  if (!result.coarse.found) {
+    result.status = "coarse registration found no consistent correspondences";
+    result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+  }
+  if (options.snap_to_priors) {
+    result.coarse.target_from_source =
+        SnapToPriors(result.coarse.target_from_source, source, target, shared);
+  }
+  result.target_from_source = result.coarse.target_from_source;
+  if (options.run_icp) {
+    GatedIcpOptions icp = options.icp;
+    if (!options.icp_distance_factors.empty()) {
+      icp.max_distances_m.clear();
+      for (double f : options.icp_distance_factors) {
+        icp.max_distances_m.push_back(f * Spacing(source, target));
+      }
+    }
+    // The trunk axes join the fine stage only when the coarse result already roughly agrees
+    // with them (a trunk cylinder fitted across a hidden fork would pull the pair askew).
+    IcpPriors priors;
+    if (options.trunk_axis_weight > 0 && source.trunk && target.trunk && source.trunk->cylinder &&
+        target.trunk->cylinder) {
+      const TrunkCylinder& a = *source.trunk->cylinder;
+      const TrunkCylinder& b = *target.trunk->cylinder;
+      const Eigen::Isometry3d& t = result.coarse.target_from_source;
+      if (AngleDeg(t.linear() * a.axis, b.axis) <= options.max_trunk_guard_tilt_deg &&
+          LineOffsetAt(b.point, b.axis, t * a.point) <= options.max_trunk_guard_offset_m) {
+        priors.line = LineConstraint{a.point, a.axis, a.half_length_m,
+                                     b.point, b.axis, options.trunk_axis_weight};
+        result.trunk_constraint = true;
+      }
+    }
+    // The ground likewise, guarded the same way (the views may see different patches of an
+    // uneven ground).
+    if (options.ground_weight > 0 && source.ground && target.ground) {
+      const Eigen::Isometry3d& t = result.coarse.target_from_source;
+      const GroundPlane& a = *source.ground;
+      const GroundPlane& b = *target.ground;
+      // Three points on the source ground around the foot of the trunk (or of the view).
+      Eigen::Vector3d foot = source.trunk ? source.trunk->base : source.cloud->GetCenter();
+      foot -= a.SignedDistance(foot) * a.normal;
+      const Eigen::Vector3d e1 = a.normal.unitOrthogonal();
+      const Eigen::Vector3d e2 = a.normal.cross(e1);
+      const double reach = options.ground_reach_m;
+      PlaneConstraint plane{{foot + reach * e1, foot - 0.5 * reach * e1 + 0.87 * reach * e2,
+                             foot - 0.5 * reach * e1 - 0.87 * reach * e2},
+                            b.normal,
+                            b.offset,
+                            options.ground_weight};
+      bool agrees = AngleDeg(t.linear() * a.normal, b.normal) <= options.max_ground_guard_tilt_deg;
+      for (const auto& p : plane.source_points) {
+        agrees = agrees && std::abs(b.SignedDistance(t * p)) <= options.max_ground_guard_offset_m;
+      }
+      if (agrees) {
+        priors.plane = plane;
+        result.ground_constraint = true;
+      }
+    }
+    result.fine = GatedPointToPlaneIcp(*source.cloud, *target.cloud, *target.cloud_tree,
+                                       result.coarse.target_from_source, icp,
+                                       source.planarity.get(), target.planarity.get(), priors);
+    result.target_from_source = result.fine.target_from_source;
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.coarse_overlap =
+      CoarseOverlap(source_coarse.points, target_coarse.points, result.target_from_source,
+                    options.sac_ia.inlier_distance_m);
+  const Overlap match = PaperMatch(source, target, result.target_from_source, options);
+  result.match_rate = match.share;
+  result.rmse_m = match.rmse_m;
+  CheckPair(source, target, options, result);
+  return result;
+}
+
+}  // namespace simtree

@@ -1,0 +1,117 @@
+#pragma once
+// One pair of views, coarse to fine: SAC-IA on the views' coarse points (by default the key
+// region's L1-medial skeleton) applied to the whole view, then gated point-to-plane ICP. Then the
+// checks that decide whether the result is trusted: a pair that fails them is reported as failed
+// with the reason, never passed on as if it had registered.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "simtree/registration/gated_icp.h"
+#include "simtree/registration/registration_view.h"
+#include "simtree/registration/sac_ia.h"
+
+namespace simtree {
+
+struct PairOptions {
+  SacIaOptions sac_ia;
+  // Use the views' up directions and key-region centres in SAC-IA (SacIaPrior).
+  bool up_prior = true;
+  bool center_prior = true;
+  double max_center_offset_share = 0.5;  // of the key region's radius
+  // Shift the coarse result so the trunk cylinders' axes meet and the grounds coincide.
+  bool snap_to_priors = true;
+  GatedIcpOptions icp;
+  // ICP stage distances in point spacings (replaces icp.max_distances_m when not empty).
+  std::vector<double> icp_distance_factors = {6.0, 3.0, 1.5};
+  bool run_icp = true;
+  // Fine registration also aligns the views' trunk cylinders' axes (LineConstraint), with this
+  // weight relative to all surface correspondences; 0: not at all.
+  double trunk_axis_weight = 1.0;
+  // And the ground planes (PlaneConstraint at three points `ground_reach_m` around the trunk's
+  // foot), when both views found one.
+  double ground_weight = 0.5;
+  double ground_reach_m = 0.8;
+  // The paper's columns: a source point is matched when a target point is within this many
+  // point spacings (no normal test); RMSE is over the matched points.
+  double match_distance_factor = 1.5;
+
+  // Acceptance checks (a failed check flags the pair).
+  double min_fitness = 0.02;             // gated fitness at the last ICP distance
+  double max_up_disagreement_deg = 4.0;  // both views' up directions after registration
+  double max_ground_offset_m = 0.06;     // both views' ground planes after registration
+  double max_trunk_offset_factor = 1.5;  // trunk axes apart, in trunk widths (at least 5 cm)
+  double max_trunk_tilt_deg = 10.0;      // trunk axes' directions apart
+  // With trunk cylinders on both views, these replace the two above.
+  double max_cylinder_tilt_deg = 5.0;
+  double max_cylinder_offset_m = 0.025;
+  // Share of the source's coarse points (the skeleton) within the SAC-IA inlier distance of the
+  // target's, after registration.
+  double min_coarse_overlap = 0.45;
+  // The trunk constraint joins fine registration only when the coarse result puts the trunk
+  // cylinders within these of each other.
+  double max_trunk_guard_tilt_deg = 6.0;
+  double max_trunk_guard_offset_m = 0.08;
+  double max_ground_guard_tilt_deg = 4.0;
+  double max_ground_guard_offset_m = 0.08;
+};
+
+struct PairResult {
+  std::string source, target;
+  bool ok = false;
+  std::string status;  // "ok", or why the pair is not trusted
+  Eigen::Isometry3d target_from_source = Eigen::Isometry3d::Identity();
+  CoarseAlignment coarse;
+  IcpResult fine;
+  // The paper's columns, at match_distance_factor spacings.
+  double match_rate = 0.0;
+  double rmse_m = 0.0;
+  // What the checks measured (NaN when a view lacks the ground or the trunk).
+  double up_disagreement_deg = 0.0;
+  double ground_offset_m = 0.0;
+  double trunk_offset_m = 0.0;
+  double coarse_overlap = 0.0;     // skeleton overlap after registration
+  bool trunk_constraint = false;   // the trunk axes took part in fine registration
+  bool ground_constraint = false;  // the ground planes took part in fine registration
+  double seconds = 0.0;            // coarse + fine (view preparation not included)
+};
+
+PairResult RegisterPair(const RegistrationView& source, const RegistrationView& target,
+                        const PairOptions& options = {});
+
+// The key regions of a pair: spheres around the same physical point in both views, the point of
+// each trunk's axis at the lower of the two views' branching heights (a view that cannot see a
+// fork, one arm hidden behind the trunk, finds the next one up; the other view's lower fork is
+// the tree's first). Heights are above the ground when both views see it, else above the trunk's
+// base. nullopt when a view has no trunk.
+struct SharedKeyRegion {
+  KeyRegion source, target;
+  double height_m = 0.0;
+};
+std::optional<SharedKeyRegion> SharedKeyRegions(const RegistrationView& source,
+                                                const RegistrationView& target);
+
+// A view's coarse points and features inside `region` (all of them when null).
+struct CoarseSubset {
+  open3d::geometry::PointCloud points;
+  open3d::pipelines::registration::Feature features;
+};
+CoarseSubset SelectCoarse(const RegistrationView& view, const KeyRegion* region);
+
+// The checks alone, for a transform found by any method.
+void CheckPair(const RegistrationView& source, const RegistrationView& target,
+               const PairOptions& options, PairResult& result);
+
+// Share of the source's coarse points within `distance_m` of the target's after the transform.
+double CoarseOverlap(const open3d::geometry::PointCloud& source,
+                     const open3d::geometry::PointCloud& target,
+                     const Eigen::Isometry3d& target_from_source, double distance_m);
+
+// The paper's match rate and RMSE of a transform.
+Overlap PaperMatch(const RegistrationView& source, const RegistrationView& target,
+                   const Eigen::Isometry3d& target_from_source, const PairOptions& options);
+
+}  // namespace simtree

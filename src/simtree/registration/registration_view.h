@@ -1,0 +1,104 @@
+#pragma once
+// One view made ready for registration: its tree cloud with camera-oriented normals, its up
+// direction, its trunk and key region, and the points coarse registration aligns (by default the
+// L1-medial skeleton of the key region, the paper's choice) with their normals and FPFH features.
+// A view is prepared once and takes part in many pairs.
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <open3d/geometry/KDTreeFlann.h>
+#include <open3d/geometry/PointCloud.h>
+#include <open3d/pipelines/registration/Feature.h>
+#include <Eigen/Core>
+
+#include "simtree/registration/l1_medial_skeleton.h"
+#include "simtree/registration/medial_projection.h"
+#include "simtree/registration/trunk.h"
+#include "simtree/scan/preprocess.h"
+
+namespace simtree {
+
+// What coarse registration aligns (paper Table I's four rows).
+enum class CoarseInput {
+  kEntireTree,         // every point of the view (downsampled)
+  kKeyRegion,          // the points inside the key region
+  kTreeSkeleton,       // the L1-medial skeleton of the whole view
+  kKeyRegionSkeleton,  // the L1-medial skeleton of the key region (the paper's)
+};
+const char* ToString(CoarseInput input);
+// Throws InputError for an unknown name.
+CoarseInput ParseCoarseInput(const std::string& name);
+
+struct RegistrationViewOptions {
+  CoarseInput coarse_input = CoarseInput::kKeyRegionSkeleton;
+  // Normals of the view: radius `normal_radius_factor` times the point spacing.
+  double normal_radius_factor = 3.0;
+  int normal_max_neighbors = 30;
+  TrunkOptions trunk;
+  CylinderFitOptions cylinder;
+  KeyRegionOptions key_region;
+  SkeletonOptions skeleton;
+  // Move points onto their branch axes before the skeleton (medial_projection.h); the
+  // neighbourhood is at least `projection_radius_factor` point spacings.
+  bool medial_projection = true;
+  MedialProjectionOptions projection;
+  double projection_radius_factor = 4.0;
+  // The projected points are thinned to one per voxel of this many point spacings.
+  double skeleton_input_voxel_factor = 1.0;
+  // The skeleton's initial neighbourhood h: this many point spacings (at least 4 cm).
+  double skeleton_radius_factor = 4.0;
+  // Point inputs (entire tree, key region) are downsampled to this many point spacings first.
+  double coarse_voxel_factor = 2.0;
+  // Normals and FPFH of the coarse points: radii in multiples of the coarse points' spacing.
+  double feature_normal_factor = 3.0;
+  double feature_radius_factor = 8.0;
+};
+
+struct RegistrationView {
+  std::string name;
+  // Camera frame, normals oriented to the camera. Shared and never changed once the view is
+  // prepared: Open3D 0.16's KDTreeFlann (Debian build) indexes the cloud's own point buffer
+  // without copying it, so the tree is only valid while this very cloud lives.
+  std::shared_ptr<const open3d::geometry::PointCloud> cloud;
+  std::shared_ptr<const open3d::geometry::KDTreeFlann> cloud_tree;
+  // Per point: how plane-like its neighbourhood is, (l1 - l0) / l2 of the covariance's
+  // eigenvalues l0 <= l1 <= l2. Near 0 on twigs (a line: the normal is any direction across it)
+  // and on noise; fine registration trusts only plane-like points' normals.
+  std::shared_ptr<const std::vector<float>> planarity;
+  // Up in the camera frame: the ground's normal, else the trunk's axis, else the camera's -y.
+  Eigen::Vector3d up = -Eigen::Vector3d::UnitY();
+  std::optional<GroundPlane> ground;
+  double spacing_m = 0.0;
+  std::optional<TrunkFit> trunk;
+  std::optional<KeyRegion> key_region;
+  std::string failure;  // why this view cannot be coarsely registered (empty when it can)
+  CoarseInput coarse_input = CoarseInput::kKeyRegionSkeleton;
+  // The coarse points of the whole view (skeleton or downsampled surface) with normals; a pair
+  // aligns those inside its key regions (SharedKeyRegions) or all of them.
+  open3d::geometry::PointCloud coarse;
+  std::shared_ptr<open3d::pipelines::registration::Feature> features;  // FPFH of `coarse`
+  double coarse_spacing_m = 0.0;
+  double seconds = 0.0;  // time to prepare
+
+  bool CanRegister() const { return failure.empty(); }
+};
+
+bool UsesKeyRegion(CoarseInput input);
+
+// The trunk's axis (of the cylinder when fitted), else up.
+Eigen::Vector3d TrunkAxis(const RegistrationView& view);
+// Height of a point in the view: above the ground when `use_ground` and the view has one, else
+// along the trunk's axis above its base. Two views measure the same height at the same place.
+double HeightOf(const RegistrationView& view, const Eigen::Vector3d& point, bool use_ground);
+// The point of the trunk's axis at a height (HeightOf); nullopt without a trunk.
+std::optional<Eigen::Vector3d> TrunkPointAtHeight(const RegistrationView& view, double height_m,
+                                                  bool use_ground);
+
+// Prepares a preprocessed view (PreprocessView's cloud, up and ground). Never throws for a view
+// that merely lacks a trunk: `failure` says so and the view's pairs are flagged.
+RegistrationView PrepareView(const std::string& name, const PreprocessResult& preprocessed,
+                             const RegistrationViewOptions& options = {});
+
+}  // namespace simtree

@@ -1,0 +1,93 @@
+#include "simtree/registration/pairwise.h"
+
+#include <gtest/gtest.h>
+
+#include "registration_fixtures.h"
+
+namespace simtree {
+namespace {
+
+const PairOptions kDefaults;
+
+// Views 0, 1, 4 and 5 of a ring every 36 degrees: pairs 36, 144 and 180 degrees apart.
+const test::StandInViews& Views() {
+  static const test::StandInViews views = test::MakeStandInViews(6, 36.0, 11);
+  return views;
+}
+
+PoseError ErrorOf(const PairResult& r, int s, int t) {
+  const auto& v = Views();
+  return PairPoseError(r.target_from_source, v.poses[s].world_from_camera,
+                       v.poses[t].world_from_camera, v.tree_points);
+}
+
+TEST(Pairwise, ViewsAreReadyWithTrunkCylinderAndSkeleton) {
+  for (const RegistrationView& view : Views().views) {
+    ASSERT_TRUE(view.CanRegister()) << view.name << ": " << view.failure;
+    ASSERT_TRUE(view.trunk && view.trunk->cylinder) << view.name;
+    EXPECT_TRUE(view.ground) << view.name;
+    EXPECT_GT(view.coarse.points_.size(), 100u) << view.name;
+    ASSERT_TRUE(view.features);
+    EXPECT_EQ(view.features->Num(), view.coarse.points_.size());
+  }
+}
+
+TEST(Pairwise, RegistersNeighboursAndOppositeViewsAtTheTree) {
+  const PairOptions options;
+  for (const auto& [s, t] : {std::pair{1, 0}, std::pair{4, 0}, std::pair{5, 0}}) {
+    const PairResult r = RegisterPair(Views().views[s], Views().views[t], options);
+    const PoseError e = ErrorOf(r, s, t);
+    EXPECT_TRUE(r.ok) << s << "->" << t << ": " << r.status;
+    EXPECT_LT(e.rotation_deg, 2.0) << s << "->" << t;
+    EXPECT_LT(e.tree_rms_m, 0.025) << s << "->" << t;
+    EXPECT_TRUE(r.trunk_constraint);
+    EXPECT_GT(r.match_rate, 0.05);
+    EXPECT_GT(r.rmse_m, 0.0);
+  }
+}
+
+TEST(Pairwise, SharedKeyRegionsSitOnTheSameTreePoint) {
+  const auto& v = Views();
+  const auto shared = SharedKeyRegions(v.views[3], v.views[0]);
+  ASSERT_TRUE(shared);
+  const Eigen::Vector3d a = v.poses[3].world_from_camera * shared->source.center;
+  const Eigen::Vector3d b = v.poses[0].world_from_camera * shared->target.center;
+  EXPECT_LT((a - b).norm(), 0.03);
+  EXPECT_EQ(shared->source.radius_m, shared->target.radius_m);
+}
+
+TEST(Pairwise, AViewWithoutTrunkIsAFlaggedPair) {
+  RegistrationView no_trunk = Views().views[1];
+  no_trunk.trunk.reset();
+  no_trunk.key_region.reset();
+  no_trunk.failure = "no trunk: the bottom of the view holds no upright stem";
+  const PairResult r = RegisterPair(no_trunk, Views().views[0], kDefaults);
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.status.find("no trunk"), std::string::npos) << r.status;
+}
+
+TEST(Pairwise, AWrongTransformFailsTheChecks) {
+  // The right transform turned 90 degrees about the trunk: grounds and trunks still agree, the
+  // skeletons do not. (Turned only 40 degrees, 54% of this pair's skeleton stays within the
+  // 5 cm inlier distance and the checks pass it: a known blind spot, docs/registration.md.)
+  const auto& v = Views();
+  const PairResult right = RegisterPair(v.views[1], v.views[0], kDefaults);
+  ASSERT_TRUE(right.ok);
+  PairResult wrong = right;
+  const TrunkCylinder& c = *v.views[0].trunk->cylinder;
+  Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
+  turn.linear() = Eigen::AngleAxisd(90 * M_PI / 180, c.axis).toRotationMatrix();
+  turn.translation() = c.point - turn.linear() * c.point;
+  wrong.target_from_source = turn * right.target_from_source;
+  const auto shared = SharedKeyRegions(v.views[1], v.views[0]);
+  const auto s = SelectCoarse(v.views[1], &shared->source);
+  const auto t = SelectCoarse(v.views[0], &shared->target);
+  wrong.coarse_overlap = CoarseOverlap(s.points, t.points, wrong.target_from_source,
+                                       kDefaults.sac_ia.inlier_distance_m);
+  CheckPair(v.views[1], v.views[0], kDefaults, wrong);
+  EXPECT_FALSE(wrong.ok) << "skeleton overlap " << wrong.coarse_overlap;
+  EXPECT_NE(wrong.status.find("matches"), std::string::npos) << wrong.status;
+}
+
+}  // namespace
+}  // namespace simtree
