@@ -44,14 +44,7 @@ double SecondsSince(Clock::time_point start) {
 
 // Seeds of the independent random parts, so changing one part does not reshuffle the others. The
 // tree takes the seed itself: `synth --seed 7` grows GenerateTree(species, 7).
-enum class Stream : uint64_t {
-  kMarkers = 1,
-  kScanRig,
-  kVibration,
-  kScene,
-  kScanNoise,
-  kPullNoise
-};
+enum class Stream : uint64_t { kMarkers = 1, kScanRig, kVibration, kScene, kScanNoise, kPullNoise };
 uint64_t SeedFor(uint64_t seed, Stream stream) {
   uint64_t z = seed * 0x9E3779B97F4A7C15ull + static_cast<uint64_t>(stream) * 0xBF58476D1CE4E5B9ull;
   z ^= z >> 31;
