@@ -55,6 +55,47 @@ TEST(TrunkCylinder, AForkAboveShortensTheFitToTheSlicesThatAgree) {
   EXPECT_FALSE(fit.note.empty());
 }
 
+TEST(TrunkCylinder, AThinTrunkBlurredAsWideAsItsRadiusIsRebuiltFromTheSliceCircles) {
+  // A 2.6 cm trunk leaning 4 degrees, every point moved 1 cm (std) in 3D: a blurred ring in
+  // which a wider tilted cylinder can hold more points within the MSAC band than the true one.
+  const Eigen::Vector3d axis =
+      Eigen::Vector3d(std::sin(DegToRad(4)), 0, std::cos(DegToRad(4))).normalized();
+  auto points = test::CylinderPoints({0, 0, 0}, axis, 0.8, 0.026, 0.004);
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> gauss(0.0, 0.01);
+  for (Eigen::Vector3d& p : points) p += Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng));
+  const TrunkFit fit = FitTrunkCylinder(points, 0.0, {.inlier_threshold_m = 0.009});
+  ASSERT_TRUE(fit.found) << fit.note;
+  EXPECT_NEAR(fit.cylinder.radius, 0.026, 0.026 * 0.1) << fit.note;
+  EXPECT_NEAR(fit.slice_radius_m, 0.026, 0.026 * 0.1);
+  EXPECT_GT(fit.cylinder.axis.dot(axis), std::cos(DegToRad(3))) << fit.note;
+  EXPECT_LT(fit.cylinder.AxisDistance({0, 0, 0}), 0.008);
+}
+
+TEST(TrunkCylinder, RobustCircleIgnoresABranchBesideTheTrunk) {
+  // A ring of 5 cm radius and, beside it, a second smaller ring (a low branch) with a third as many
+  // points: the plain fit is dragged toward it, the robust one is not.
+  std::vector<Eigen::Vector3d> slab;
+  for (int i = 0; i < 90; ++i) {
+    const double a = kTwoPi * i / 90;
+    slab.push_back({0.05 * std::cos(a), 0.05 * std::sin(a), 0.01 * (i % 3)});
+  }
+  for (int i = 0; i < 30; ++i) {
+    const double a = kTwoPi * i / 30;
+    slab.push_back({0.09 + 0.015 * std::cos(a), 0.015 * std::sin(a), 0.0});
+  }
+  Eigen::Vector3d centre;
+  double radius = 0.0;
+  ASSERT_TRUE(FitCircle(slab, {0, 0, 0}, Eigen::Vector3d::UnitZ(), &centre, &radius));
+  EXPECT_GT(std::abs(radius - 0.05) + centre.head<2>().norm(), 0.005);
+  ASSERT_TRUE(FitCircleRobust(slab, {0, 0, 0}, Eigen::Vector3d::UnitZ(), 0.002, &centre, &radius));
+  EXPECT_NEAR(radius, 0.05, 1e-3);
+  EXPECT_LT(centre.head<2>().norm(), 1e-3);
+  EXPECT_NEAR(centre.z(), 0.0, 1e-12);  // in the plane through the origin
+  const std::vector<Eigen::Vector3d> two = {{0, 0, 0}, {1, 0, 0}};
+  EXPECT_FALSE(FitCircleRobust(two, {0, 0, 0}, Eigen::Vector3d::UnitZ(), 0.002, &centre, &radius));
+}
+
 TEST(TrunkCylinder, TooFewPointsOrNoCylinderIsSaid) {
   const std::vector<Eigen::Vector3d> few = {{0, 0, 0}, {0, 0, 1}};
   const TrunkFit none = FitTrunkCylinder(few, 0.0);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include <fmt/format.h>
@@ -119,6 +120,87 @@ std::vector<int> Inliers(const Cylinder& c, std::span<const Eigen::Vector3d> poi
   return inliers;
 }
 
+double Median(std::vector<double> values) {
+  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+  return values[values.size() / 2];
+}
+
+// A circle per slice along the axis, each from every point of its slab near the axis (not only
+// from what already fits the cylinder: a fork or a low branch must show), robust to the stray
+// points in it.
+std::vector<TrunkSlice> FitSlices(const Cylinder& c, const Eigen::Vector3d& base, double top,
+                                  std::span<const Eigen::Vector3d> points,
+                                  const TrunkFitOptions& options) {
+  const int slices = std::max(options.slices, 1);
+  const double reach = 2.0 * c.radius + 3.0 * options.inlier_threshold_m;
+  std::vector<std::vector<Eigen::Vector3d>> slab(slices);
+  for (const Eigen::Vector3d& p : points) {
+    const double t = (p - base).dot(c.axis);
+    if (t < 0 || t > top || c.AxisDistance(p) > reach) continue;
+    slab[std::min(slices - 1, static_cast<int>(t / top * slices))].push_back(p);
+  }
+  std::vector<TrunkSlice> out;
+  for (int s = 0; s < slices; ++s) {
+    TrunkSlice slice;
+    slice.from_m = top * s / slices;
+    slice.to_m = top * (s + 1) / slices;
+    slice.points = static_cast<int>(slab[s].size());
+    const Eigen::Vector3d origin = base + c.axis * 0.5 * (slice.from_m + slice.to_m);
+    if (slice.points >= 6 && FitCircleRobust(slab[s], origin, c.axis, options.inlier_threshold_m,
+                                             &slice.centre, &slice.radius_m)) {
+      slice.centre_offset_m = c.AxisDistance(slice.centre);
+      const double slack = options.inlier_threshold_m;
+      slice.agrees = std::abs(slice.radius_m - c.radius) <=
+                         options.slice_radius_tolerance * c.radius + slack &&
+                     slice.centre_offset_m <= options.slice_centre_tolerance * c.radius + slack;
+    }
+    out.push_back(slice);
+  }
+  return out;
+}
+
+// The cylinder the slice circles describe, when most of them agree with each other (radii within
+// the tolerance of their median, centres on one line): axis through their centres, radius their
+// median. False when they do not or too few fitted.
+bool SliceConsensus(std::span<const TrunkSlice> slices, const Cylinder& c,
+                    const TrunkFitOptions& options, Cylinder* out) {
+  std::vector<double> radii;
+  for (const TrunkSlice& s : slices) {
+    if (s.radius_m > 0) radii.push_back(s.radius_m);
+  }
+  if (radii.size() < 3) return false;
+  const double radius = Median(radii);
+  const double slack = options.inlier_threshold_m;
+  std::vector<Eigen::Vector3d> centres;
+  for (const TrunkSlice& s : slices) {
+    if (s.radius_m > 0 &&
+        std::abs(s.radius_m - radius) <= options.slice_radius_tolerance * radius + slack) {
+      centres.push_back(s.centre);
+    }
+  }
+  if (2 * centres.size() <= slices.size() || centres.size() < 3) return false;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : centres) mean += p;
+  mean /= centres.size();
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (const Eigen::Vector3d& p : centres) scatter += (p - mean) * (p - mean).transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(scatter);
+  Eigen::Vector3d axis = eig.eigenvectors().col(2);
+  if (axis.dot(c.axis) < 0) axis = -axis;
+  for (const Eigen::Vector3d& p : centres) {
+    if ((p - mean).cross(axis).norm() > options.slice_centre_tolerance * radius + slack) {
+      return false;
+    }
+  }
+  if (axis.z() < std::cos(options.max_tilt_rad) || radius < options.min_radius_m ||
+      radius > options.max_radius_m) {
+    return false;
+  }
+  out->axis = axis;
+  out->point = mean;
+  out->radius = radius;
+  return true;
+}
 }  // namespace
 
 double Cylinder::AxisDistance(const Eigen::Vector3d& p) const {
@@ -171,6 +253,72 @@ bool FitCircle(std::span<const Eigen::Vector3d> points, const Eigen::Vector3d& o
   return true;
 }
 
+bool FitCircleRobust(std::span<const Eigen::Vector3d> points, const Eigen::Vector3d& origin,
+                     const Eigen::Vector3d& axis, double min_band_m, Eigen::Vector3d* centre,
+                     double* radius) {
+  if (points.size() < 3) return false;
+  Eigen::Vector3d e1, e2;
+  PlaneBasis(axis, &e1, &e2);
+  std::vector<Eigen::Vector2d> q(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3d d = points[i] - origin;
+    q[i] = {d.dot(e1), d.dot(e2)};
+  }
+  // MSAC over circles through three points (a fixed seed: the same slab, the same circle), the
+  // band `min_band_m` wide ...
+  std::mt19937_64 rng(q.size());
+  std::uniform_int_distribution<size_t> pick(0, q.size() - 1);
+  const double band2 = min_band_m * min_band_m;
+  double best_cost = std::numeric_limits<double>::infinity();
+  Eigen::Vector2d c = Eigen::Vector2d::Zero();
+  double r = 0.0;
+  for (int it = 0; it < 150; ++it) {
+    const Eigen::Vector2d a = q[pick(rng)], b = q[pick(rng)], d = q[pick(rng)];
+    // Circumcentre: equidistant from a, b and d.
+    Eigen::Matrix2d m;
+    m << (b - a).transpose(), (d - a).transpose();
+    if (std::abs(m.determinant()) < 1e-12) continue;
+    const Eigen::Vector2d rhs(0.5 * (b.squaredNorm() - a.squaredNorm()),
+                              0.5 * (d.squaredNorm() - a.squaredNorm()));
+    const Eigen::Vector2d h = m.inverse() * rhs;
+    const double hr = (a - h).norm();
+    if (!std::isfinite(hr) || hr <= 0) continue;
+    double cost = 0.0;
+    for (const Eigen::Vector2d& p : q) {
+      const double e = (p - h).norm() - hr;
+      cost += std::min(e * e, band2);
+    }
+    if (cost < best_cost) {
+      best_cost = cost;
+      c = h;
+      r = hr;
+    }
+  }
+  if (!std::isfinite(best_cost)) return false;
+  // ... then a least-squares circle on the points within a band that follows the spread of the
+  // residuals (a scaled median absolute deviation, never narrower than `min_band_m`), a few times.
+  std::vector<Eigen::Vector3d> band;
+  for (int round = 0; round < 4; ++round) {
+    std::vector<double> residuals(q.size());
+    for (size_t i = 0; i < q.size(); ++i) residuals[i] = std::abs((q[i] - c).norm() - r);
+    const double width = std::max(2.5 * 1.4826 * Median(residuals), min_band_m);
+    band.clear();
+    for (size_t i = 0; i < q.size(); ++i) {
+      if (residuals[i] <= width) band.push_back(points[i]);
+    }
+    Eigen::Vector3d next;
+    double next_r = 0.0;
+    if (!FitCircle(band, origin, axis, &next, &next_r)) break;
+    const Eigen::Vector3d d = next - origin;
+    c = {d.dot(e1), d.dot(e2)};
+    r = next_r;
+  }
+  if (!(r > 0) || !std::isfinite(r)) return false;
+  *centre = origin + c.x() * e1 + c.y() * e2;
+  *radius = r;
+  return true;
+}
+
 TrunkFit FitTrunkCylinder(std::span<const Eigen::Vector3d> points, double base_height,
                           const TrunkFitOptions& options) {
   TrunkFit fit;
@@ -211,23 +359,31 @@ TrunkFit FitTrunkCylinder(std::span<const Eigen::Vector3d> points, double base_h
     return fit;
   }
 
-  // Refine on inliers, check slices, and shorten once to the slices that agree.
+  // Refine on inliers and check slices. Two corrections, each at most once: when the slice
+  // circles agree with each other but not with the cylinder (on a noisy thin trunk a wider tilted
+  // cylinder can cut through more of the blurred ring than the true one), the cylinder is rebuilt
+  // from the slice circles; when a slice above the lowest disagrees (a fork, a low branch), the fit
+  // is shortened to the stretch below it.
   std::vector<char> use(points.size(), 1);
-  for (int round = 0; round < 2; ++round) {
+  bool refine = true, rebuilt = false, shortened = false;
+  for (int round = 0; round < 3; ++round) {
     Cylinder c = best;
     std::vector<Eigen::Vector3d> kept;
     for (size_t i = 0; i < points.size(); ++i) {
       if (use[i]) kept.push_back(points[i]);
     }
     std::vector<int> inliers;
-    for (int pass = 0; pass < 3; ++pass) {
-      inliers = Inliers(c, kept, options.inlier_threshold_m);
-      c = RefineCylinder(c, kept, inliers);
+    if (refine) {
+      for (int pass = 0; pass < 3; ++pass) {
+        inliers = Inliers(c, kept, options.inlier_threshold_m);
+        c = RefineCylinder(c, kept, inliers);
+      }
     }
     inliers = Inliers(c, kept, options.inlier_threshold_m);
     if (inliers.size() < 8 || c.radius < options.min_radius_m || c.radius > options.max_radius_m ||
         c.axis.z() < cos_tilt) {
       fit.note = "the refined cylinder left the tilt and radius limits";
+      fit.found = false;
       return fit;
     }
     // Axis point at the base height.
@@ -245,66 +401,57 @@ TrunkFit FitTrunkCylinder(std::span<const Eigen::Vector3d> points, double base_h
     fit.rms_m = std::sqrt(sum2 / inliers.size());
     fit.length_m = top;
     fit.found = true;
+    fit.slices = FitSlices(c, fit.base, top, kept, options);
+    if (rebuilt) {
+      // The slices of the rebuilt cylinder, measured across its own axis, give its radius.
+      std::vector<double> fitted;
+      for (const TrunkSlice& slice : fit.slices) {
+        if (slice.radius_m > 0) fitted.push_back(slice.radius_m);
+      }
+      if (!fitted.empty()) c.radius = fit.cylinder.radius = Median(fitted);
+      fit.slices = FitSlices(c, fit.base, top, kept, options);
+    }
 
-    // Slices along the axis: a circle per slice from the points near the surface.
-    fit.slices.clear();
-    const int slices = std::max(options.slices, 1);
-    // Everything within a radius of the surface: a fork or a low branch must show, not only what
-    // already fits.
-    const double near = std::max(3.0 * options.inlier_threshold_m, c.radius);
-    std::vector<std::vector<Eigen::Vector3d>> slice_points(slices);
-    for (const Eigen::Vector3d& p : kept) {
-      const double t = c.AxisCoordinate(p) - t_base;
-      if (t < 0 || t > top || std::abs(c.AxisDistance(p) - c.radius) > near) continue;
-      slice_points[std::min(slices - 1, static_cast<int>(t / top * slices))].push_back(p);
-    }
-    fit.slices_agree = true;
-    int first_bad = slices;
-    for (int s = 0; s < slices; ++s) {
-      TrunkSlice slice;
-      slice.from_m = top * s / slices;
-      slice.to_m = top * (s + 1) / slices;
-      slice.points = static_cast<int>(slice_points[s].size());
-      Eigen::Vector3d centre;
-      double radius = 0.0;
-      const Eigen::Vector3d origin = fit.base + c.axis * 0.5 * (slice.from_m + slice.to_m);
-      if (slice.points >= 6 && FitCircle(slice_points[s], origin, c.axis, &centre, &radius)) {
-        slice.radius_m = radius;
-        slice.centre_offset_m = c.AxisDistance(centre);
-        const double slack = options.inlier_threshold_m;
-        slice.agrees =
-            std::abs(radius - c.radius) <= options.slice_radius_tolerance * c.radius + slack &&
-            slice.centre_offset_m <= options.slice_centre_tolerance * c.radius + slack;
-      }
-      if (!slice.agrees) {
-        fit.slices_agree = false;
-        first_bad = std::min(first_bad, s);
-      }
-      fit.slices.push_back(slice);
-    }
     std::vector<double> radii;
     for (const TrunkSlice& slice : fit.slices) {
       if (slice.agrees) radii.push_back(slice.radius_m);
     }
-    if (radii.empty()) {
-      fit.slice_radius_m = c.radius;
-    } else {
-      std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
-      fit.slice_radius_m = radii[radii.size() / 2];
+    fit.slice_radius_m = radii.empty() ? c.radius : Median(radii);
+    fit.slices_agree = radii.size() == fit.slices.size();
+    if (fit.slices_agree) break;
+
+    if (!rebuilt) {
+      Cylinder consensus;
+      if (SliceConsensus(fit.slices, c, options, &consensus)) {
+        fit.note = fmt::format(
+            "the MSAC cylinder (radius {:.4f} m) disagreed with the slice circles; rebuilt from "
+            "them",
+            c.radius);
+        best = consensus;
+        refine = false;
+        rebuilt = true;
+        continue;
+      }
     }
-    if (fit.slices_agree || round == 1) break;
+    if (shortened) break;
+    int first_bad = 0;
+    while (fit.slices[first_bad].agrees) ++first_bad;
     if (first_bad == 0) {
-      fit.note = "the lowest slice disagrees with the cylinder (root flare or a low fork)";
+      if (fit.note.empty()) {
+        fit.note = "the lowest slice disagrees with the cylinder (root flare or a low fork)";
+      }
       break;
     }
     // Keep the stretch below the first disagreeing slice and fit again.
     const double keep_to = fit.slices[first_bad].from_m;
-    fit.note = fmt::format("shortened to the lowest {:.2f} m, where the slices agree", keep_to);
+    fit.note += fmt::format("{}shortened to the lowest {:.2f} m, where the slices agree",
+                            fit.note.empty() ? "" : "; ", keep_to);
     for (size_t i = 0; i < points.size(); ++i) {
       const double t = c.AxisCoordinate(points[i]) - t_base;
       use[i] = t <= keep_to;
     }
     best = c;
+    shortened = true;
   }
   return fit;
 }

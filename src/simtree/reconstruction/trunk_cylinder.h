@@ -4,7 +4,10 @@
 // scored by a truncated squared distance so outliers cost a constant), refined by least squares
 // on its inliers, then checked slice by slice: a circle fitted to each slice along the axis must
 // agree with the cylinder (a fork, a low branch or a leaning base shows up as a disagreeing slice
-// and the fit is shortened to the slices that agree).
+// and the fit is shortened to the slices that agree). The slice circles are fitted robustly, each
+// with its own centre; when they agree with each other but not with the cylinder (a thin trunk
+// under noise as wide as its radius, where a wider tilted cylinder cuts through more of the blurred
+// ring), the cylinder is rebuilt from them: axis through their centres, radius their median.
 
 #include <cstdint>
 #include <span>
@@ -41,8 +44,9 @@ struct TrunkFitOptions {
 struct TrunkSlice {
   double from_m = 0.0, to_m = 0.0;  // along the axis, from the base
   int points = 0;
-  double radius_m = 0.0;         // circle fitted to the slice; 0 when too few points
-  double centre_offset_m = 0.0;  // of that circle from the cylinder axis
+  double radius_m = 0.0;  // circle fitted to the slice; 0 when too few points
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // of that circle
+  double centre_offset_m = 0.0;                      // of that circle from the cylinder axis
   bool agrees = false;
 };
 
@@ -72,5 +76,12 @@ TrunkFit FitTrunkCylinder(std::span<const Eigen::Vector3d> points, double base_h
 // with fewer than 3 points or a degenerate set.
 bool FitCircle(std::span<const Eigen::Vector3d> points, const Eigen::Vector3d& origin,
                const Eigen::Vector3d& axis, Eigen::Vector3d* centre, double* radius);
+
+// FitCircle made robust to stray points (a low branch, a prop, noise): started from the median
+// point and distance, refitted a few times on the points within a band that follows the spread of
+// the residuals, never narrower than `min_band_m`.
+bool FitCircleRobust(std::span<const Eigen::Vector3d> points, const Eigen::Vector3d& origin,
+                     const Eigen::Vector3d& axis, double min_band_m, Eigen::Vector3d* centre,
+                     double* radius);
 
 }  // namespace simtree
