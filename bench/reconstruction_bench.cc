@@ -208,6 +208,8 @@ std::vector<Variant> Variants() {
   add("pipe exponent 3.0", [](ReconstructionOptions& o) { o.radii.pipe_exponent = 3.0; });
   add("MSAC radius as trunk anchor (not the slice median)",
       [](ReconstructionOptions& o) { o.anchor_on_slices = false; });
+  add("trunk fitted on the working voxel means (not the cloud's points)",
+      [](ReconstructionOptions& o) { o.trunk_on_full_cloud = false; });
   add("no scene cleanup (sparse returns, objects on the ground)",
       [](ReconstructionOptions& o) { o.clean_scene = false; });
   add("fixed lengths (not from spacing)", [](ReconstructionOptions& o) {

@@ -195,15 +195,40 @@ ReconstructionResult ReconstructTree(std::span<const Eigen::Vector3d> points,
   const double fit_length = std::clamp(options.trunk_fit_share * height, options.trunk_fit_min_m,
                                        options.trunk_fit_max_m);
   std::vector<Eigen::Vector3d> trunk_points;
+  std::vector<char> trunk_voxel(working.size(), 0);
   for (size_t i = 0; i < working.size(); ++i) {
     if (field.distance[i] <= 1.5 * fit_length && working[i].z() <= z_base + fit_length) {
       trunk_points.push_back(working[i]);
+      trunk_voxel[i] = 1;
     }
   }
   TrunkFitOptions trunk_options = options.trunk;
   trunk_options.inlier_threshold_m = scale.trunk_threshold_m;
   trunk_options.seed = options.seed;
   result.trunk = FitTrunkCylinder(trunk_points, z_base, trunk_options);
+  if (options.trunk_on_full_cloud && result.trunk.found &&
+      result.trunk.cylinder.radius < options.trunk_voxels_for_full_cloud * voxel) {
+    // A trunk only a few voxels in radius is measured again on the points themselves: the points
+    // of every voxel chosen above (the working point nearest to them is that voxel's mean).
+    // Averaging voxels about as wide as the depth noise across a thin trunk's blurred ring widens
+    // the ring (synth: +5% on a 2.6 cm trunk in 9 mm voxels, +12% in 11 mm ones; -4% on both
+    // from the points).
+    std::vector<Eigen::Vector3d> full;
+    std::vector<int> near;
+    std::vector<double> d2;
+    for (const Eigen::Vector3d& p : tree_points) {
+      if (p.z() > z_base + fit_length + voxel) continue;
+      index.Nearest(p, 1, near, d2);
+      if (!near.empty() && trunk_voxel[near[0]] && d2[0] <= voxel * voxel) full.push_back(p);
+    }
+    if (full.size() > trunk_points.size()) {
+      TrunkFit refit = FitTrunkCylinder(full, z_base, trunk_options);
+      if (refit.found) {
+        result.trunk = std::move(refit);
+        trunk_points = std::move(full);
+      }
+    }
+  }
   if (!result.trunk.found) {
     warn(fmt::format("no trunk cylinder: {}; the base radius is estimated from the lowest points",
                      result.trunk.note));

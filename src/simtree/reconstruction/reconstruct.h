@@ -79,6 +79,11 @@ struct ReconstructionOptions {
   // are the better measurement (trunk radius error 4.2% against 8.9%, 3 species x 3 seeds); on
   // the stand-in and real scans the two tie (docs/reconstruction.md).
   bool anchor_on_slices = true;
+  // Fit the trunk again on the cloud's own points of the trunk stretch (true) rather than only on
+  // the working voxel means (false) when the first fit's radius is under this many working voxels:
+  // voxels as wide as the depth noise widen a thin trunk's blurred ring.
+  bool trunk_on_full_cloud = true;
+  double trunk_voxels_for_full_cloud = 4.0;
   RadiusOptions radii;
   BranchDecompositionOptions branches;
   uint64_t seed = 1;
