@@ -120,6 +120,18 @@ std::vector<int> Inliers(const Cylinder& c, std::span<const Eigen::Vector3d> poi
   return inliers;
 }
 
+// Coordinates of `points` in the plane through `origin` spanned by e1, e2.
+std::vector<Eigen::Vector2d> InPlane(std::span<const Eigen::Vector3d> points,
+                                     const Eigen::Vector3d& origin, const Eigen::Vector3d& e1,
+                                     const Eigen::Vector3d& e2) {
+  std::vector<Eigen::Vector2d> q(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector3d d = points[i] - origin;
+    q[i] = {d.dot(e1), d.dot(e2)};
+  }
+  return q;
+}
+
 double Median(std::vector<double> values) {
   std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
   return values[values.size() / 2];
@@ -212,11 +224,7 @@ bool FitCircle(std::span<const Eigen::Vector3d> points, const Eigen::Vector3d& o
   if (points.size() < 3) return false;
   Eigen::Vector3d e1, e2;
   PlaneBasis(axis, &e1, &e2);
-  std::vector<Eigen::Vector2d> q(points.size());
-  for (size_t i = 0; i < points.size(); ++i) {
-    const Eigen::Vector3d d = points[i] - origin;
-    q[i] = {d.dot(e1), d.dot(e2)};
-  }
+  const std::vector<Eigen::Vector2d> q = InPlane(points, origin, e1, e2);
   // Algebraic (Kasa) fit: x^2 + y^2 + D x + E y + F = 0.
   Eigen::MatrixXd a(q.size(), 3);
   Eigen::VectorXd b(q.size());
@@ -259,11 +267,7 @@ bool FitCircleRobust(std::span<const Eigen::Vector3d> points, const Eigen::Vecto
   if (points.size() < 3) return false;
   Eigen::Vector3d e1, e2;
   PlaneBasis(axis, &e1, &e2);
-  std::vector<Eigen::Vector2d> q(points.size());
-  for (size_t i = 0; i < points.size(); ++i) {
-    const Eigen::Vector3d d = points[i] - origin;
-    q[i] = {d.dot(e1), d.dot(e2)};
-  }
+  const std::vector<Eigen::Vector2d> q = InPlane(points, origin, e1, e2);
   // MSAC over circles through three points (a fixed seed: the same slab, the same circle), the
   // band `min_band_m` wide ...
   std::mt19937_64 rng(q.size());
