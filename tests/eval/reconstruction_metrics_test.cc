@@ -86,6 +86,19 @@ TEST(ReconstructionMetrics, AMissingBranchLowersRecallAndAWrongOnePrecision) {
   EXPECT_GT(e.length_error, 0.1);
 }
 
+TEST(ReconstructionMetrics, ATwigAlongThinWoodClaimsNoThickLengthWhereItLeavesTheTrunk) {
+  // The 5 mm branch found, but leaving the trunk 10 cm lower and running up along its bark
+  // first: its start lies near the thick trunk, yet the twig follows thin true wood.
+  Tree found = Truth();
+  Branch& twig = found.branches[3];
+  const Eigen::Vector3d start = found.branches[0].nodes[8].position;
+  twig.nodes.insert(twig.nodes.begin(), {start + Eigen::Vector3d(0, -0.06, -0.1), 0.005});
+  twig.nodes.insert(twig.nodes.begin(), {start + Eigen::Vector3d(0, 0, -0.1), 0.005});
+  const TruthScores s = ScoreAgainstTruth(found, Truth());
+  EXPECT_NEAR(s.length_error, 0.0, 1e-9);
+  EXPECT_DOUBLE_EQ(s.precision, 1.0);
+}
+
 TEST(ReconstructionMetrics, RadiusAndTrunkErrorsAreRelative) {
   Tree fat = Truth();
   for (Branch& b : fat.branches) {

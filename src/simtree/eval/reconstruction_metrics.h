@@ -18,7 +18,8 @@
 //    `trunk_height_m` of the true trunk;
 //  - total-length error: (reconstructed - true) / true length of wood at least min_true_radius_m
 //    thick: true skeleton samples that thick, against reconstructed samples whose nearest true
-//    wood is that thick or that lie near no true wood at all.
+//    wood is that thick or that lie near no true wood at all, on scored reconstructed branches
+//    (a branch along thin true wood claims none, though it starts near the thick wood it leaves).
 // Against the scan (real clouds): distance of every point from the model's surface (the union of
 // the branches' frustums), its mean, median and the share within 2 cm; branch counts by level.
 
