@@ -7,6 +7,8 @@
 
 #include <cmath>
 
+#include <nlohmann/json.hpp>
+
 #include "simtree/core/tree_json.h"
 #include "simtree/io/capture.h"
 #include "simtree/io/ground_truth.h"
@@ -88,6 +90,12 @@ TEST(SynthCli, QuickCaptureIsACaptureFolderWithCompleteGroundTruth) {
     }
   }
   EXPECT_GT(visible, 0);
+  // Every tape is seen by the pull camera at rest (placement moves the hidden ones).
+  for (const MarkerBox2d& b : boxes[0].markers) EXPECT_TRUE(b.visible) << "marker " << b.id;
+  // The pull deflects the tied point visibly and stays in the FEM's linear range.
+  const nlohmann::json report = nlohmann::json::parse(test::ReadText(dir / "gt" / "synth.json"));
+  EXPECT_GT(report.at("pull_deflection_m").get<double>(), 0.05);
+  EXPECT_LE(report.at("pull_max_rotation_rad").get<double>(), 0.3 + 1e-9);
 
   // The modal truth: the tree's modes, a value for every marker link and every branch.
   const ModalTruth truth = ReadModalTruth(dir / "gt" / "modal.json");
