@@ -6,13 +6,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "simtree/core/error.h"
 #include "simtree/core/tree_json.h"
 #include "simtree/io/capture.h"
 #include "simtree/io/ground_truth.h"
 #include "simtree/io/trajectories.h"
+#include "simtree/synth/synth_capture.h"
 #include "test_util.h"
 
 namespace fs = std::filesystem;
@@ -152,6 +156,23 @@ TEST(SynthCli, BadInputGivesAClearErrorAndNoOutput) {
   r = test::RunCli("synth --quick");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_THAT(r.output, HasSubstr("--out"));
+}
+
+TEST(SynthCli, PullOptionsOutOfRangeAreRefusedBeforeAnythingIsWritten) {
+  const fs::path dir = test::TempDir() / "never";
+  for (const auto& change : std::vector<std::function<void(SynthOptions&)>>{
+           [](SynthOptions& o) { o.pull_deflection_m = -0.1; },
+           [](SynthOptions& o) { o.pull_deflection_m = std::nan(""); },
+           [](SynthOptions& o) { o.pull_deflection_per_length = 0.0; },
+           [](SynthOptions& o) { o.pull_deflection_per_length = 0.9; },
+           [](SynthOptions& o) { o.max_pull_rotation_rad = 0.0; },
+           [](SynthOptions& o) { o.max_pull_rotation_rad = 1.0; }}) {
+    SynthOptions options;
+    options.quick = true;
+    change(options);
+    EXPECT_THROW(RunSynth(options, dir), InputError);
+    EXPECT_FALSE(fs::exists(dir));
+  }
 }
 
 TEST(SynthCli, HelpTeachesAndListsSpecies) {
