@@ -76,23 +76,22 @@ bool SeenFrom(const Tree& tree, const SegmentGrid& grid, const Site& site,
   const Eigen::Vector3d to_camera = (camera - node.position).normalized();
   Eigen::Vector3d across = tangent.cross(to_camera);
   across = across.norm() > 1e-9 ? Eigen::Vector3d(across.normalized()) : Eigen::Vector3d::Zero();
-  int clear = 0;
-  for (const double along : {-0.4, 0.0, 0.4}) {
-    for (const double side : {-0.6, 0.0, 0.6}) {
-      const Eigen::Vector3d centre = node.position + along * kTapeLengthM * tangent;
-      const Eigen::Vector3d surface =
-          centre + node.radius * (side * across + std::sqrt(1.0 - side * side) * to_camera);
-      clear += !grid.AnyNear(camera, surface, grid.max_radius(), [&](const GridSegment& s) {
-        if (s.branch == site.branch && std::abs(s.index - site.node) <= 2) return false;
-        // Joints at the site's own branch (a child starting next to it) are not occluders.
-        if (SegmentDistance(s.a, s.b, node.position, node.position) < 2.0 * node.radius) {
-          return false;
-        }
-        return SegmentDistance(camera, surface, s.a, s.b) < s.radius;
-      });
-    }
+  constexpr int kNeeded = 6;  // of 9
+  int clear = 0, blocked = 0;
+  for (int k = 0; k < 9 && clear < kNeeded && blocked <= 9 - kNeeded; ++k) {
+    const double along = 0.4 * (k / 3 - 1), side = 0.6 * (k % 3 - 1);
+    const Eigen::Vector3d centre = node.position + along * kTapeLengthM * tangent;
+    const Eigen::Vector3d surface =
+        centre + node.radius * (side * across + std::sqrt(1.0 - side * side) * to_camera);
+    const bool hidden = grid.AnyNear(camera, surface, grid.max_radius(), [&](const GridSegment& s) {
+      if (s.branch == site.branch && std::abs(s.index - site.node) <= 2) return false;
+      // Joints at the site's own branch (a child starting next to it) are not occluders.
+      if (SegmentDistance(s.a, s.b, node.position, node.position) < 2.0 * node.radius) return false;
+      return SegmentDistance(camera, surface, s.a, s.b) < s.radius;
+    });
+    (hidden ? blocked : clear) += 1;
   }
-  return clear >= 6;
+  return clear >= kNeeded;
 }
 
 void ScoreSites(const Tree& tree, std::vector<Site>& sites, const MarkerPlacementOptions& options) {
