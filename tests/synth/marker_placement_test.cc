@@ -1,5 +1,6 @@
 #include "simtree/synth/marker_placement.h"
 
+#include <algorithm>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -111,6 +112,52 @@ TEST(MarkerPlacement, DeterministicBySeedAndCountIsHonoured) {
   // Placing again replaces the markers.
   PlaceMarkers(c, MarkerPlacementOptions{.count = 3, .seed = 5});
   EXPECT_EQ(c.markers.size(), 3u);
+}
+
+TEST(MarkerPlacement, FirstChainRunsDownTheGivenBranch) {
+  const Tree grown = GenerateTree(SpeciesPreset("acer_rubrum"), 3);
+  const auto children = grown.Children();
+  int tried = 0;
+  for (const int start : children[0]) {
+    // Level-1 branches with a child plainly thick and long enough for tape, forking well out.
+    const Branch& parent = grown.branches[start];
+    const bool tapeable_child =
+        std::any_of(children[start].begin(), children[start].end(), [&](int c) {
+          const Branch& child = grown.branches[c];
+          return child.nodes.front().radius >= 0.006 && child.Length() >= 0.4 &&
+                 parent.ArcLengths()[child.parent_node] >= 0.25;
+        });
+    if (parent.level != 1 || !tapeable_child) continue;
+    if (++tried > 3) break;
+    Tree tree = grown;
+    PlaceMarkers(tree, MarkerPlacementOptions{.count = 12, .first_chain_branch = start});
+    int on_branch = 0, below = 0;
+    for (const Marker& m : tree.markers) {
+      on_branch += m.branch == start;
+      below += m.branch != start && IsAncestor(tree, start, m.branch);
+    }
+    SCOPED_TRACE("first chain on branch " + std::to_string(start));
+    EXPECT_EQ(on_branch, 1);
+    EXPECT_GE(below, 1);  // the chain goes on into its children
+  }
+  EXPECT_GE(tried, 2);
+}
+
+TEST(MarkerPlacement, ExcludedSitesAreNotUsed) {
+  Tree tree = GenerateTree(SpeciesPreset("magnolia"), 2);
+  PlaceMarkers(tree, MarkerPlacementOptions{.count = 12});
+  MarkerPlacementOptions again{.count = 12};
+  for (const Marker& m : tree.markers) again.excluded_sites.emplace_back(m.branch, m.arc_length);
+  const std::vector<Marker> first = tree.markers;
+  PlaceMarkers(tree, again);
+  ASSERT_EQ(tree.markers.size(), 12u);
+  for (const Marker& m : tree.markers) {
+    for (const Marker& old : first) {
+      if (old.branch == m.branch) {
+        EXPECT_GE(std::abs(old.arc_length - m.arc_length), 0.1 - 1e-9);
+      }
+    }
+  }
 }
 
 TEST(MarkerPlacement, BadInputsAreRefused) {

@@ -6,11 +6,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
+#include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "simtree/core/error.h"
 #include "simtree/core/tree_json.h"
 #include "simtree/io/capture.h"
 #include "simtree/io/ground_truth.h"
 #include "simtree/io/trajectories.h"
+#include "simtree/synth/synth_capture.h"
 #include "test_util.h"
 
 namespace fs = std::filesystem;
@@ -88,6 +94,12 @@ TEST(SynthCli, QuickCaptureIsACaptureFolderWithCompleteGroundTruth) {
     }
   }
   EXPECT_GT(visible, 0);
+  // Every tape is seen by the pull camera at rest (placement moves the hidden ones).
+  for (const MarkerBox2d& b : boxes[0].markers) EXPECT_TRUE(b.visible) << "marker " << b.id;
+  // The pull deflects the tied point visibly and stays in the FEM's linear range.
+  const nlohmann::json report = nlohmann::json::parse(test::ReadText(dir / "gt" / "synth.json"));
+  EXPECT_GT(report.at("pull_deflection_m").get<double>(), 0.05);
+  EXPECT_LE(report.at("pull_max_rotation_rad").get<double>(), 0.3 + 1e-9);
 
   // The modal truth: the tree's modes, a value for every marker link and every branch.
   const ModalTruth truth = ReadModalTruth(dir / "gt" / "modal.json");
@@ -144,6 +156,23 @@ TEST(SynthCli, BadInputGivesAClearErrorAndNoOutput) {
   r = test::RunCli("synth --quick");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_THAT(r.output, HasSubstr("--out"));
+}
+
+TEST(SynthCli, PullOptionsOutOfRangeAreRefusedBeforeAnythingIsWritten) {
+  const fs::path dir = test::TempDir() / "never";
+  for (const auto& change : std::vector<std::function<void(SynthOptions&)>>{
+           [](SynthOptions& o) { o.pull_deflection_m = -0.1; },
+           [](SynthOptions& o) { o.pull_deflection_m = std::nan(""); },
+           [](SynthOptions& o) { o.pull_deflection_per_length = 0.0; },
+           [](SynthOptions& o) { o.pull_deflection_per_length = 0.9; },
+           [](SynthOptions& o) { o.max_pull_rotation_rad = 0.0; },
+           [](SynthOptions& o) { o.max_pull_rotation_rad = 1.0; }}) {
+    SynthOptions options;
+    options.quick = true;
+    change(options);
+    EXPECT_THROW(RunSynth(options, dir), InputError);
+    EXPECT_FALSE(fs::exists(dir));
+  }
 }
 
 TEST(SynthCli, HelpTeachesAndListsSpecies) {

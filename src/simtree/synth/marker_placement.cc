@@ -40,6 +40,9 @@ std::vector<Site> FindSites(const Tree& tree, const std::vector<std::vector<int>
       for (const int c : children[b.id]) {
         ok = ok && std::abs(arcs[tree.branches[c].parent_node] - arcs[i]) >= clear;
       }
+      for (const auto& [branch, arc] : options.excluded_sites) {
+        ok = ok && !(branch == b.id && std::abs(arc - arcs[i]) < 2.0 * options.fork_clearance_m);
+      }
       if (ok) sites.push_back({b.id, static_cast<int>(i), arcs[i]});
     }
   }
@@ -58,18 +61,37 @@ SegmentGrid TreeSegments(const Tree& tree) {
   return grid;
 }
 
-// True when no branch crosses the line from the camera to the near side of the site.
+// The tape band's length along the branch (sensor_scene.h's default tape width).
+constexpr double kTapeLengthM = 0.04;
+
+// True when most of the band's face towards the camera is clear of every other branch: 9 points
+// (3 along the tape, 3 across the branch as the camera sees it), at least 6 of them clear. One
+// line of sight to the band's centre let a branch or the trunk hide most of a band.
 bool SeenFrom(const Tree& tree, const SegmentGrid& grid, const Site& site,
               const Eigen::Vector3d& camera) {
-  const Node& node = tree.branches[site.branch].nodes[site.node];
+  const Branch& b = tree.branches[site.branch];
+  const Node& node = b.nodes[site.node];
+  const Eigen::Vector3d tangent =
+      (b.nodes[site.node + 1].position - b.nodes[site.node - 1].position).normalized();
   const Eigen::Vector3d to_camera = (camera - node.position).normalized();
-  const Eigen::Vector3d surface = node.position + node.radius * to_camera;
-  return !grid.AnyNear(camera, surface, grid.max_radius(), [&](const GridSegment& s) {
-    if (s.branch == site.branch && std::abs(s.index - site.node) <= 2) return false;
-    // Joints at the site's own branch (a child starting next to it) are not occluders.
-    if (SegmentDistance(s.a, s.b, node.position, node.position) < 2.0 * node.radius) return false;
-    return SegmentDistance(camera, surface, s.a, s.b) < s.radius;
-  });
+  Eigen::Vector3d across = tangent.cross(to_camera);
+  across = across.norm() > 1e-9 ? Eigen::Vector3d(across.normalized()) : Eigen::Vector3d::Zero();
+  constexpr int kNeeded = 6;  // of 9
+  int clear = 0, blocked = 0;
+  for (int k = 0; k < 9 && clear < kNeeded && blocked <= 9 - kNeeded; ++k) {
+    const double along = 0.4 * (k / 3 - 1), side = 0.6 * (k % 3 - 1);
+    const Eigen::Vector3d centre = node.position + along * kTapeLengthM * tangent;
+    const Eigen::Vector3d surface =
+        centre + node.radius * (side * across + std::sqrt(1.0 - side * side) * to_camera);
+    const bool hidden = grid.AnyNear(camera, surface, grid.max_radius(), [&](const GridSegment& s) {
+      if (s.branch == site.branch && std::abs(s.index - site.node) <= 2) return false;
+      // Joints at the site's own branch (a child starting next to it) are not occluders.
+      if (SegmentDistance(s.a, s.b, node.position, node.position) < 2.0 * node.radius) return false;
+      return SegmentDistance(camera, surface, s.a, s.b) < s.radius;
+    });
+    (hidden ? blocked : clear) += 1;
+  }
+  return clear >= kNeeded;
 }
 
 void ScoreSites(const Tree& tree, std::vector<Site>& sites, const MarkerPlacementOptions& options) {
@@ -197,6 +219,11 @@ class Placer {
         start_value = value;
         start = c;
       }
+    }
+    const std::optional<int> wanted = options_.first_chain_branch;
+    if (chain_heads_.empty() && wanted && *wanted > 0 && *wanted < tree_.size() &&
+        tree_.branches[*wanted].level == 1 && !sites_of_[*wanted].empty()) {
+      start = *wanted;
     }
     if (start < 0) return false;
     // Follow the hierarchy down: branches, then one site on each before the next one's fork.

@@ -10,13 +10,15 @@
 // How sites are chosen:
 //  1. The root marker: the best trunk site below the lowest branch (so it lies on the path from
 //     every other marker to the ground).
-//  2. Chains: a few level-1 branches spread around the crown, each followed down the hierarchy
+//  2. Chains: a few level-1 branches spread around the crown (the first one on
+//     `first_chain_branch` when given: the branch the rope pulls), each followed down the hierarchy
 //     (a child attached beyond the parent's marker, preferring children whose subtree reaches the
 //     deepest taped level), one marker per level, so every level is taped and each link joins a
 //     branch to its parent, as the paper's Fig. 8.
 //  3. The rest, one per branch, by score, away from markers already placed.
-// A site's score prefers (with a camera position) sites the camera sees (no branch crosses the
-// line of sight), on the camera's side of the crown, on a branch running across the view, and
+// A site's score prefers (with a camera position) sites the camera sees (most of the band's face
+// towards the camera, 9 points over its length and width, clear of every other branch), on the
+// camera's side of the crown, on a branch running across the view, and
 // (always) in the middle of its branch; seeded jitter breaks ties.
 //
 // Links: a marker's parent is the nearest marker on its way down to the trunk base (the same
@@ -25,6 +27,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -39,6 +42,13 @@ struct MarkerPlacementOptions {
   // (level 4 ends at 3-5 mm) still get a marker, as in the paper.
   double min_radius_m = 0.003;
   std::optional<Eigen::Vector3d> camera_position = std::nullopt;  // world; none: no preference
+  // A level-1 branch the first chain must start on (the pulled one, so the pull excites a taped
+  // chain); none, or a branch with no site: the best-scoring one.
+  std::optional<int> first_chain_branch = std::nullopt;
+  // Sites not to use, as (branch, arc length): no site within 2 fork_clearance_m of one on the
+  // same branch (e.g. tapes a renderer found hidden: it sees props and partial occlusion the
+  // line-of-sight test below does not).
+  std::vector<std::pair<int, double>> excluded_sites = {};
   uint64_t seed = 0;
   double fork_clearance_m = 0.05;
 };
