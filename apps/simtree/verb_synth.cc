@@ -57,9 +57,11 @@ void RegisterSynth(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(1, 100));
   verb->add_option("--pull-deflection", args->synth.pull_deflection_m,
-                   "How far the rope moves the tied point at the hold (m); the force follows")
+                   "How far the rope moves the tied point at the hold (m); the force follows. "
+                   "0 (default): 15% of the pulled branch's length, less if any part of the "
+                   "tree would turn more than 0.3 rad (the FEM is linear)")
       ->capture_default_str()
-      ->check(CLI::Range(0.001, 0.9));
+      ->check(CLI::Range(0.0, 0.9));
   verb->add_flag("--no-contact-sheet", args->no_sheet, "Do not write contact_sheet.png");
   verb->add_flag("--list-species", args->list_species,
                  "Print the species presets and what each is modelled on, then exit");
