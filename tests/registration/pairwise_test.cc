@@ -40,7 +40,7 @@ TEST(Pairwise, RegistersNeighboursAndOppositeViewsAtTheTree) {
     EXPECT_TRUE(r.ok) << s << "->" << t << ": " << r.status;
     EXPECT_LT(e.rotation_deg, 2.0) << s << "->" << t;
     EXPECT_LT(e.tree_rms_m, 0.025) << s << "->" << t;
-    EXPECT_TRUE(r.trunk_constraint);
+    EXPECT_FALSE(r.trunk_constraint);  // off by default (one-sided cylinder fits are biased)
     EXPECT_GT(r.match_rate, 0.05);
     EXPECT_GT(r.rmse_m, 0.0);
   }
