@@ -114,7 +114,7 @@ void CheckPair(const RegistrationView& source, const RegistrationView& target,
   if (source.ground && target.ground) {
     result.up_disagreement_deg =
         AngleDeg(t.linear() * source.ground->normal, target.ground->normal);
-    if (result.up_disagreement_deg > options.max_up_disagreement_deg) {
+    if (options.check_ground && result.up_disagreement_deg > options.max_up_disagreement_deg) {
       problems.push_back(fmt::format("the grounds tilt {:.1f} deg apart (at most {:.1f})",
                                      result.up_disagreement_deg, options.max_up_disagreement_deg));
     }
@@ -125,7 +125,7 @@ void CheckPair(const RegistrationView& source, const RegistrationView& target,
                      : Eigen::Vector3d(-source.ground->offset * source.ground->normal);
     on_source -= source.ground->SignedDistance(on_source) * source.ground->normal;
     result.ground_offset_m = std::abs(target.ground->SignedDistance(t * on_source));
-    if (result.ground_offset_m > options.max_ground_offset_m) {
+    if (options.check_ground && result.ground_offset_m > options.max_ground_offset_m) {
       problems.push_back(fmt::format("the grounds are {:.0f} mm apart (at most {:.0f})",
                                      1e3 * result.ground_offset_m,
                                      1e3 * options.max_ground_offset_m));
@@ -309,7 +309,23 @@ PairResult RegisterPair(const RegistrationView& source, const RegistrationView& 
   }
   result.target_from_source = result.coarse.target_from_source;
   if (options.run_icp) {
-    const FineResult fine = RefinePair(source, target, result.coarse.target_from_source, options);
+    FineResult fine = RefinePair(source, target, result.coarse.target_from_source, options);
+    if (target.trunk) {
+      const Eigen::Vector3d axis = TrunkAxis(target).normalized();
+      const Eigen::Vector3d& pivot = target.trunk->base;
+      for (double angle_deg : options.turned_alternatives_deg) {
+        Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
+        turn.linear() =
+            Eigen::AngleAxisd(angle_deg * std::numbers::pi / 180.0, axis).toRotationMatrix();
+        turn.translation() = pivot - turn.linear() * pivot;
+        FineResult turned =
+            RefinePair(source, target, turn * fine.icp.target_from_source, options);
+        if (turned.icp.fitness > fine.icp.fitness) {
+          fine = std::move(turned);
+          result.turned_deg = angle_deg;
+        }
+      }
+    }
     result.fine = fine.icp;
     result.trunk_constraint = fine.trunk_constraint;
     result.ground_constraint = fine.ground_constraint;

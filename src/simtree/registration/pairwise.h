@@ -35,6 +35,11 @@ struct PairOptions {
   // ICP stage distances in point spacings (replaces icp.max_distances_m when not empty).
   std::vector<double> icp_distance_factors = {6.0, 3.0, 1.5};
   bool run_icp = true;
+  // After fine registration, the result turned about the target's trunk axis by each of these
+  // angles is refined too, and the one whose whole view overlaps most is kept: a tree whose
+  // key-region skeleton looks alike from opposite sides (SAC-IA's blind spot) is told apart by
+  // its crown. Empty: not tried.
+  std::vector<double> turned_alternatives_deg = {180.0};
   // After ICP, shift the source so the views' medial points (branch axes) meet (AlignMedialAxes),
   // at these distances in point spacings; empty: not at all.
   std::vector<double> medial_distance_factors = {6.0, 3.0};
@@ -57,6 +62,10 @@ struct PairOptions {
   // distance. On synthetic acer_rubrum right pairs had 0.51-0.85, pairs turned 180 deg about the
   // trunk (whose skeletons still overlap) 0.32-0.50.
   double min_fitness = 0.45;
+  // Check the ground planes (tilt and offset below). Off by default: on synthetic acer_rubrum
+  // (seeds 3-4) right pairs' planes lay up to 33 deg and 37 cm apart (each view fits its plane
+  // to another patch of an uneven ground, or to no ground at all).
+  bool check_ground = false;
   // Both views' ground normals after registration: an uneven ground tilts right pairs' planes
   // up to ~6 deg apart.
   double max_up_disagreement_deg = 8.0;
@@ -94,6 +103,7 @@ struct PairResult {
   double ground_offset_m = 0.0;
   double trunk_offset_m = 0.0;
   double coarse_overlap = 0.0;     // skeleton overlap after registration
+  double turned_deg = 0.0;         // the turned alternative kept (0: the result as found)
   bool trunk_constraint = false;   // the trunk axes took part in fine registration
   bool ground_constraint = false;  // the ground planes took part in fine registration
   double seconds = 0.0;            // coarse + fine (view preparation not included)
