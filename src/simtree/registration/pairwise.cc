@@ -167,9 +167,18 @@ void CheckPair(const RegistrationView& source, const RegistrationView& target,
                                    100 * result.coarse_overlap, ToString(source.coarse_input),
                                    100 * options.min_coarse_overlap));
   }
-  if (options.run_icp && result.fine.fitness < options.min_fitness) {
-    problems.push_back(fmt::format("only {:.0f}% of points overlap (at least {:.0f}%)",
-                                   100 * result.fine.fitness, 100 * options.min_fitness));
+  // The whole view, crown included: what tells a tree turned about its trunk from a right pair
+  // when the trunk and the key region's skeleton look alike from every side.
+  if (source.cloud && target.cloud && target.cloud_tree) {
+    const double last = options.icp_distance_factors.empty()
+                            ? options.icp.max_distances_m.back()
+                            : options.icp_distance_factors.back() * Spacing(source, target);
+    result.view_overlap =
+        MeasureOverlap(*source.cloud, *target.cloud, *target.cloud_tree, t, last).share;
+    if (result.view_overlap < options.min_fitness) {
+      problems.push_back(fmt::format("only {:.0f}% of points overlap (at least {:.0f}%)",
+                                     100 * result.view_overlap, 100 * options.min_fitness));
+    }
   }
   result.ok = problems.empty();
   if (result.ok) {
@@ -318,8 +327,7 @@ PairResult RegisterPair(const RegistrationView& source, const RegistrationView& 
         turn.linear() =
             Eigen::AngleAxisd(angle_deg * std::numbers::pi / 180.0, axis).toRotationMatrix();
         turn.translation() = pivot - turn.linear() * pivot;
-        FineResult turned =
-            RefinePair(source, target, turn * fine.icp.target_from_source, options);
+        FineResult turned = RefinePair(source, target, turn * fine.icp.target_from_source, options);
         if (turned.icp.fitness > fine.icp.fitness) {
           fine = std::move(turned);
           result.turned_deg = angle_deg;
