@@ -326,17 +326,14 @@ int main(int argc, char** argv) {
         change(o);
         fine_variants.emplace_back(" without priors, " + name, o);
       };
-      add_variant("no normal gate", [](PairOptions& o) { o.icp.max_normal_angle_deg = 180; });
+      add_variant("45-deg normal gate", [](PairOptions& o) { o.icp.max_normal_angle_deg = 45; });
       add_variant("no medial shift", [](PairOptions& o) { o.medial_distance_factors.clear(); });
-      add_variant("no gate, no medial shift", [](PairOptions& o) {
-        o.icp.max_normal_angle_deg = 180;
+      add_variant("trunk constraint", [](PairOptions& o) { o.trunk_axis_weight = 1.0; });
+      add_variant("Open3D's settings, no medial shift", [](PairOptions& o) {
+        o.icp.huber_share = 0;
+        o.icp.max_source_points = 0;
+        o.icp.iterations_per_stage = 30;
         o.medial_distance_factors.clear();
-      });
-      add_variant("medial 3, 1.5", [](PairOptions& o) { o.medial_distance_factors = {3, 1.5}; });
-      add_variant("medial 10, 5", [](PairOptions& o) { o.medial_distance_factors = {10, 5}; });
-      add_variant("no gate, medial 10, 5", [](PairOptions& o) {
-        o.icp.max_normal_angle_deg = 180;
-        o.medial_distance_factors = {10, 5};
       });
       for (const auto& [s, t] : pairs) {
         if (!ours[s].CanRegister() || !ours[t].CanRegister()) continue;
