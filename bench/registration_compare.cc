@@ -287,30 +287,26 @@ int main(int argc, char** argv) {
       record(scene, s, t, "ours without priors", p.target_from_source,
              prep_seconds[s] + prep_seconds[t] + p.seconds, ours[s], ours[t], p.ok);
     }
-    // Which prior helps and which hurts (an uneven ground is not one plane from every side).
+    // Which prior helps and which hurts (an uneven ground is not one plane from every side):
+    // each left out, or (those off by default) put back, in turn.
     if (ablations) {
-      std::vector<RegistrationView> groundless = ours;
-      for (RegistrationView& view : groundless) view.ground.reset();
-      PairOptions no_ground_constraint = default_options;
-      no_ground_constraint.ground_weight = 0.0;
-      PairOptions no_snap = default_options;
-      no_snap.snap_to_priors = false;
-      PairOptions no_trunk_constraint = default_options;
-      no_trunk_constraint.trunk_axis_weight = 0.0;
+      std::vector<std::pair<std::string, PairOptions>> variants;
+      auto add = [&](const std::string& name, auto change) {
+        PairOptions o = default_options;
+        change(o);
+        variants.emplace_back("ours, " + name, o);
+      };
+      add("ground as up", [](PairOptions& o) { o.ground_as_up = true; });
+      add("ground constraint", [](PairOptions& o) { o.ground_weight = 0.5; });
+      add("trunk constraint", [](PairOptions& o) { o.trunk_axis_weight = 1.0; });
+      add("no snap", [](PairOptions& o) { o.snap_to_priors = false; });
+      add("no turned alternative", [](PairOptions& o) { o.turned_alternatives_deg.clear(); });
       for (const auto& [s, t] : pairs) {
         const double prep = prep_seconds[s] + prep_seconds[t];
-        PairResult r = RegisterPair(groundless[s], groundless[t], default_options);
-        record(scene, s, t, "ours, ground unused", r.target_from_source, prep + r.seconds, ours[s],
-               ours[t], r.ok);
-        r = RegisterPair(ours[s], ours[t], no_ground_constraint);
-        record(scene, s, t, "ours, no ground constraint", r.target_from_source, prep + r.seconds,
-               ours[s], ours[t], r.ok);
-        r = RegisterPair(ours[s], ours[t], no_snap);
-        record(scene, s, t, "ours, no snap", r.target_from_source, prep + r.seconds, ours[s],
-               ours[t], r.ok);
-        r = RegisterPair(ours[s], ours[t], no_trunk_constraint);
-        record(scene, s, t, "ours, no trunk constraint", r.target_from_source, prep + r.seconds,
-               ours[s], ours[t], r.ok);
+        for (const auto& [name, options] : variants) {
+          const PairResult r = RegisterPair(ours[s], ours[t], options);
+          record(scene, s, t, name, r.target_from_source, prep + r.seconds, ours[s], ours[t], r.ok);
+        }
       }
     }
 
@@ -416,10 +412,11 @@ int main(int argc, char** argv) {
                                           "F-4PCS-ICP (PCL)",
                                           "Open3D FPFH-RANSAC+ICP",
                                           "ours without priors",
-                                          "ours, ground unused",
-                                          "ours, no ground constraint",
+                                          "ours, ground as up",
+                                          "ours, ground constraint",
+                                          "ours, trunk constraint",
                                           "ours, no snap",
-                                          "ours, no trunk constraint",
+                                          "ours, no turned alternative",
                                           "ours"};
   std::vector<std::string> methods = order;
   for (const auto& [method, list] : by_method) {

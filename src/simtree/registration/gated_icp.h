@@ -7,6 +7,9 @@
 // them together (NOTES.md: ~47 mm of drift at 180 degrees even when started at the true pose).
 // Normals are oriented towards each view's camera, so a front and a back disagree by more than
 // the gate and never pair. Open3D's ICP has no such gate, hence this implementation.
+// (Measured since on synthetic captures: the gate keeps mostly grazing pairs, whose pull is the
+// most biased, so pairwise registration now runs without it and undoes the shells' pull with
+// AlignMedialAxes instead; docs/benchmarks.md, "The fine stage isolated".)
 
 #include <optional>
 #include <vector>
