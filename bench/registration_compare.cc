@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -104,6 +105,9 @@ struct Outcome {
   double match_rate = 0;  // the paper's match rate
   PoseError error;
   bool accepted = true;  // for ours: passed its own checks
+  // The tree centroid's displacement in the target camera's frame (x right, y down, z forward).
+  Eigen::Vector3d centroid_shift = Eigen::Vector3d::Zero();
+  const PairResult* checks = nullptr;  // for ours: what its checks measured (while `pairs` lives)
 };
 
 int GapBin(double angle_deg) {
@@ -161,7 +165,7 @@ int main(int argc, char** argv) {
   std::string species = "acer_rubrum", stand_in = "tree01.txt", json_path, markdown_path;
   std::vector<std::string> captures;
   fs::path cache = fs::temp_directory_path() / "simtree_registration_bench";
-  bool skip_baselines = false, skip_table1 = false, ablations = false;
+  bool skip_baselines = false, skip_table1 = false, ablations = false, fine_study = false;
   app.add_option("--synth-seeds", synth_seeds,
                  "Synthetic captures to make (seeds from --first-seed)");
   app.add_option("--first-seed", first_seed, "First seed")->capture_default_str();
@@ -180,6 +184,8 @@ int main(int argc, char** argv) {
   app.add_flag("--skip-baselines", skip_baselines, "Ours only");
   app.add_flag("--skip-table1", skip_table1, "No Table I");
   app.add_flag("--ablations", ablations, "Ours with each prior left out in turn");
+  app.add_flag("--fine-study", fine_study,
+               "Fine stages (ours, ours without priors, Open3D's ICP) from the same starts");
   app.add_option("--json", json_path, "Every pair's outcome as JSON");
   app.add_option("--markdown", markdown_path, "The tables as markdown");
   CLI11_PARSE(app, argc, argv);
@@ -211,6 +217,7 @@ int main(int argc, char** argv) {
 
   const PairOptions default_options;
   std::vector<Outcome> outcomes;
+  std::deque<PairResult> ours_results;  // what ours' checks measured, for the JSON
   auto record = [&](const Scene& scene, size_t s, size_t t, const std::string& method,
                     const Eigen::Isometry3d& transform, double seconds, const RegistrationView& vs,
                     const RegistrationView& vt, bool accepted) {
@@ -228,6 +235,12 @@ int main(int argc, char** argv) {
     o.error = PairPoseError(transform, scene.poses[s].world_from_camera,
                             scene.poses[t].world_from_camera, scene.tree_points);
     o.accepted = accepted;
+    Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& p : scene.tree_points) centroid += p;
+    centroid /= std::max<double>(1.0, static_cast<double>(scene.tree_points.size()));
+    const Eigen::Isometry3d target_from_world = scene.poses[t].world_from_camera.inverse();
+    o.centroid_shift = transform * (scene.poses[s].world_from_camera.inverse() * centroid) -
+                       target_from_world * centroid;
     outcomes.push_back(o);
   };
 
@@ -265,37 +278,82 @@ int main(int argc, char** argv) {
     paper_options.up_prior = paper_options.center_prior = paper_options.snap_to_priors = false;
     paper_options.trunk_axis_weight = paper_options.ground_weight = 0.0;
     for (const auto& [s, t] : pairs) {
-      const PairResult r = RegisterPair(ours[s], ours[t], default_options);
+      const PairResult& r =
+          ours_results.emplace_back(RegisterPair(ours[s], ours[t], default_options));
       record(scene, s, t, "ours", r.target_from_source,
              prep_seconds[s] + prep_seconds[t] + r.seconds, ours[s], ours[t], r.ok);
+      outcomes.back().checks = &r;
       const PairResult p = RegisterPair(ours[s], ours[t], paper_options);
       record(scene, s, t, "ours without priors", p.target_from_source,
              prep_seconds[s] + prep_seconds[t] + p.seconds, ours[s], ours[t], p.ok);
     }
-    // Which prior helps and which hurts (an uneven ground is not one plane from every side).
+    // Which prior helps and which hurts (an uneven ground is not one plane from every side):
+    // each left out, or (those off by default) put back, in turn.
     if (ablations) {
-      std::vector<RegistrationView> groundless = ours;
-      for (RegistrationView& view : groundless) view.ground.reset();
-      PairOptions no_ground_constraint = default_options;
-      no_ground_constraint.ground_weight = 0.0;
-      PairOptions no_snap = default_options;
-      no_snap.snap_to_priors = false;
-      PairOptions no_trunk_constraint = default_options;
-      no_trunk_constraint.trunk_axis_weight = 0.0;
+      std::vector<std::pair<std::string, PairOptions>> variants;
+      auto add = [&](const std::string& name, auto change) {
+        PairOptions o = default_options;
+        change(o);
+        variants.emplace_back("ours, " + name, o);
+      };
+      add("ground as up", [](PairOptions& o) { o.ground_as_up = true; });
+      add("ground constraint", [](PairOptions& o) { o.ground_weight = 0.5; });
+      add("trunk constraint", [](PairOptions& o) { o.trunk_axis_weight = 1.0; });
+      add("no snap", [](PairOptions& o) { o.snap_to_priors = false; });
+      add("no turned alternative", [](PairOptions& o) { o.turned_alternatives_deg.clear(); });
       for (const auto& [s, t] : pairs) {
         const double prep = prep_seconds[s] + prep_seconds[t];
-        PairResult r = RegisterPair(groundless[s], groundless[t], default_options);
-        record(scene, s, t, "ours, ground unused", r.target_from_source, prep + r.seconds, ours[s],
-               ours[t], r.ok);
-        r = RegisterPair(ours[s], ours[t], no_ground_constraint);
-        record(scene, s, t, "ours, no ground constraint", r.target_from_source, prep + r.seconds,
-               ours[s], ours[t], r.ok);
-        r = RegisterPair(ours[s], ours[t], no_snap);
-        record(scene, s, t, "ours, no snap", r.target_from_source, prep + r.seconds, ours[s],
-               ours[t], r.ok);
-        r = RegisterPair(ours[s], ours[t], no_trunk_constraint);
-        record(scene, s, t, "ours, no trunk constraint", r.target_from_source, prep + r.seconds,
-               ours[s], ours[t], r.ok);
+        for (const auto& [name, options] : variants) {
+          const PairResult r = RegisterPair(ours[s], ours[t], options);
+          record(scene, s, t, name, r.target_from_source, prep + r.seconds, ours[s], ours[t], r.ok);
+        }
+      }
+    }
+
+    // The fine stage isolated: ours' and the baselines' ICP from the same starts (the truth,
+    // and ours' coarse result), so a difference at the tree is the fine stage's own.
+    if (fine_study) {
+      PairOptions coarse_only = default_options;
+      coarse_only.run_icp = false;
+      std::vector<std::pair<std::string, PairOptions>> fine_variants = {
+          {"", default_options}, {" without priors", paper_options}};
+      auto add_variant = [&](const std::string& name, auto change) {
+        PairOptions o = paper_options;
+        change(o);
+        fine_variants.emplace_back(" without priors, " + name, o);
+      };
+      add_variant("45-deg normal gate", [](PairOptions& o) { o.icp.max_normal_angle_deg = 45; });
+      add_variant("no medial shift", [](PairOptions& o) { o.medial_distance_factors.clear(); });
+      add_variant("trunk constraint", [](PairOptions& o) { o.trunk_axis_weight = 1.0; });
+      add_variant("Open3D's settings, no medial shift", [](PairOptions& o) {
+        o.icp.huber_share = 0;
+        o.icp.max_source_points = 0;
+        o.icp.iterations_per_stage = 30;
+        o.medial_distance_factors.clear();
+      });
+      for (const auto& [s, t] : pairs) {
+        if (!ours[s].CanRegister() || !ours[t].CanRegister()) continue;
+        const Eigen::Isometry3d truth =
+            scene.poses[t].world_from_camera.inverse() * scene.poses[s].world_from_camera;
+        const PairResult coarse = RegisterPair(ours[s], ours[t], coarse_only);
+        if (!coarse.coarse.found) continue;
+        BaselineOptions o3d;
+        o3d.spacing_m = std::max(ours[s].spacing_m, ours[t].spacing_m);
+        for (const auto& [start_name, start] :
+             {std::pair{"truth", truth}, std::pair{"ours' coarse", coarse.target_from_source}}) {
+          const std::string from = std::string(" from ") + start_name;
+          record(scene, s, t, std::string("start") + from, start, 0.0, ours[s], ours[t], true);
+          auto begin = Clock::now();
+          for (const auto& [variant, variant_options] : fine_variants) {
+            begin = Clock::now();
+            const FineResult fine = RefinePair(ours[s], ours[t], start, variant_options);
+            record(scene, s, t, "ours' fine" + variant + from, fine.icp.target_from_source,
+                   Since(begin), ours[s], ours[t], true);
+          }
+          begin = Clock::now();
+          const Eigen::Isometry3d open3d = Open3dIcp(*ours[s].cloud, *ours[t].cloud, start, o3d);
+          record(scene, s, t, "Open3D ICP" + from, open3d, Since(begin), ours[s], ours[t], true);
+        }
       }
     }
 
@@ -354,12 +412,17 @@ int main(int argc, char** argv) {
                                           "F-4PCS-ICP (PCL)",
                                           "Open3D FPFH-RANSAC+ICP",
                                           "ours without priors",
-                                          "ours, ground unused",
-                                          "ours, no ground constraint",
+                                          "ours, ground as up",
+                                          "ours, ground constraint",
+                                          "ours, trunk constraint",
                                           "ours, no snap",
-                                          "ours, no trunk constraint",
+                                          "ours, no turned alternative",
                                           "ours"};
-  for (const std::string& method : order) {
+  std::vector<std::string> methods = order;
+  for (const auto& [method, list] : by_method) {
+    if (std::find(order.begin(), order.end(), method) == order.end()) methods.push_back(method);
+  }
+  for (const std::string& method : methods) {
     if (!by_method.count(method)) continue;
     std::vector<Outcome> all;
     for (const auto& [gap, list] : by_method[method]) {
@@ -395,20 +458,31 @@ int main(int argc, char** argv) {
   if (!json_path.empty()) {
     nlohmann::ordered_json doc = nlohmann::ordered_json::array();
     for (const Outcome& o : outcomes) {
-      doc.push_back({{"method", o.method},
-                     {"scene", o.scene},
-                     {"source", o.source},
-                     {"target", o.target},
-                     {"angle_deg", o.angle_deg},
-                     {"gap_deg", o.gap_deg},
-                     {"time_ms", 1e3 * o.seconds},
-                     {"rmse_mm", 1e3 * o.rmse_m},
-                     {"match_rate", o.match_rate},
-                     {"rotation_error_deg", o.error.rotation_deg},
-                     {"tree_rms_mm", 1e3 * o.error.tree_rms_m},
-                     {"centroid_error_mm", 1e3 * o.error.centroid_m},
-                     {"right", o.error.Within()},
-                     {"accepted", o.accepted}});
+      doc.push_back(
+          {{"method", o.method},
+           {"scene", o.scene},
+           {"source", o.source},
+           {"target", o.target},
+           {"angle_deg", o.angle_deg},
+           {"gap_deg", o.gap_deg},
+           {"time_ms", 1e3 * o.seconds},
+           {"rmse_mm", 1e3 * o.rmse_m},
+           {"match_rate", o.match_rate},
+           {"rotation_error_deg", o.error.rotation_deg},
+           {"tree_rms_mm", 1e3 * o.error.tree_rms_m},
+           {"centroid_error_mm", 1e3 * o.error.centroid_m},
+           {"centroid_shift_target_mm",
+            {1e3 * o.centroid_shift.x(), 1e3 * o.centroid_shift.y(), 1e3 * o.centroid_shift.z()}},
+           {"right", o.error.Within()},
+           {"accepted", o.accepted}});
+      if (o.checks) {
+        doc.back()["status"] = o.checks->status;
+        doc.back()["up_disagreement_deg"] = o.checks->up_disagreement_deg;
+        doc.back()["ground_offset_mm"] = 1e3 * o.checks->ground_offset_m;
+        doc.back()["trunk_offset_mm"] = 1e3 * o.checks->trunk_offset_m;
+        doc.back()["coarse_overlap"] = o.checks->coarse_overlap;
+        doc.back()["fitness"] = o.checks->fine.fitness;
+      }
     }
     std::ofstream(json_path) << doc.dump(1) << "\n";
   }

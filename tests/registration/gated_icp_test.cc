@@ -114,6 +114,52 @@ TEST(GatedIcp, EmptyOrNormallessCloudsLeaveTheStart) {
   EXPECT_EQ(GatedPointToPlaneIcp(bare, target, tree, start).fitness, 0.0);
 }
 
+// Points along three branch axes (a trunk and two limbs), scattered across them by `noise_m`.
+open3d::geometry::PointCloud Axes(double noise_m, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0.0, noise_m);
+  open3d::geometry::PointCloud cloud;
+  const Eigen::Vector3d fork(0, -1.0, 2.5);
+  const std::pair<Eigen::Vector3d, Eigen::Vector3d> axes[] = {
+      {Eigen::Vector3d(0, 0.5, 2.5), fork},
+      {fork, fork + Eigen::Vector3d(0.5, -0.8, 0.1)},
+      {fork, fork + Eigen::Vector3d(-0.4, -0.9, -0.2)}};
+  for (const auto& [a, b] : axes) {
+    for (double u = 0; u <= 1.0; u += 0.005) {
+      const Eigen::Vector3d jitter(noise(rng), noise(rng), noise(rng));
+      cloud.points_.push_back(a + u * (b - a) + jitter);
+    }
+  }
+  return cloud;
+}
+
+TEST(MedialShift, RecoversTheShiftAndKeepsTheRotation) {
+  const auto target = Axes(0.004, 1);
+  const open3d::geometry::KDTreeFlann tree(target);
+  Eigen::Isometry3d rotation = Eigen::Isometry3d::Identity();
+  rotation.linear() = Eigen::AngleAxisd(0.5 * kDeg, Eigen::Vector3d::UnitY()).toRotationMatrix();
+  // The source is the target seen through `rotation`, moved by 2 cm towards the camera (the
+  // shells' pull): the start knows the rotation but not the shift.
+  auto source = Axes(0.004, 2);
+  const Eigen::Vector3d pull(0.005, -0.004, -0.02);
+  Eigen::Isometry3d start = rotation;
+  start.translation() = pull;
+  source.Transform(rotation.inverse().matrix());
+  const MedialShiftResult r = AlignMedialAxes(source, target, tree, start);
+  EXPECT_GT(r.matches, 500);
+  EXPECT_LT((r.shift + pull).norm(), 0.003) << r.shift.transpose();
+  EXPECT_TRUE(r.target_from_source.linear().isApprox(rotation.linear(), 1e-12));
+  // Too far apart for the largest distance: nothing matches, the start is kept.
+  Eigen::Isometry3d far = start;
+  far.translation() = Eigen::Vector3d(0.5, 0, 0);
+  const MedialShiftResult none = AlignMedialAxes(source, target, tree, far);
+  EXPECT_TRUE(none.target_from_source.isApprox(far));
+  EXPECT_EQ(none.shift.norm(), 0.0);
+  // Empty clouds keep the start too.
+  const open3d::geometry::PointCloud empty;
+  EXPECT_TRUE(AlignMedialAxes(empty, target, tree, start).target_from_source.isApprox(start));
+}
+
 TEST(Overlap, CountsGatedMatches) {
   const auto a = Sheet(0.02);
   const open3d::geometry::KDTreeFlann tree(a);

@@ -40,7 +40,7 @@ TEST(Pairwise, RegistersNeighboursAndOppositeViewsAtTheTree) {
     EXPECT_TRUE(r.ok) << s << "->" << t << ": " << r.status;
     EXPECT_LT(e.rotation_deg, 2.0) << s << "->" << t;
     EXPECT_LT(e.tree_rms_m, 0.025) << s << "->" << t;
-    EXPECT_TRUE(r.trunk_constraint);
+    EXPECT_FALSE(r.trunk_constraint);  // off by default (one-sided cylinder fits are biased)
     EXPECT_GT(r.match_rate, 0.05);
     EXPECT_GT(r.rmse_m, 0.0);
   }
@@ -67,26 +67,31 @@ TEST(Pairwise, AViewWithoutTrunkIsAFlaggedPair) {
 }
 
 TEST(Pairwise, AWrongTransformFailsTheChecks) {
-  // The right transform turned 90 degrees about the trunk: grounds and trunks still agree, the
-  // skeletons do not. (Turned only 40 degrees, 54% of this pair's skeleton stays within the
-  // 5 cm inlier distance and the checks pass it: a known blind spot, docs/registration.md.)
+  // The right transform turned about the trunk: grounds and trunks still agree. Turned 90 deg
+  // the skeletons do not either; turned 40 deg 54% of this pair's skeleton stays within the 5 cm
+  // inlier distance, and only the whole view's overlap (the crown's) refuses it.
   const auto& v = Views();
   const PairResult right = RegisterPair(v.views[1], v.views[0], kDefaults);
-  ASSERT_TRUE(right.ok);
-  PairResult wrong = right;
-  const TrunkCylinder& c = *v.views[0].trunk->cylinder;
-  Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
-  turn.linear() = Eigen::AngleAxisd(90 * M_PI / 180, c.axis).toRotationMatrix();
-  turn.translation() = c.point - turn.linear() * c.point;
-  wrong.target_from_source = turn * right.target_from_source;
+  ASSERT_TRUE(right.ok) << right.status;
+  EXPECT_GE(right.view_overlap, kDefaults.min_fitness);
   const auto shared = SharedKeyRegions(v.views[1], v.views[0]);
   const auto s = SelectCoarse(v.views[1], &shared->source);
   const auto t = SelectCoarse(v.views[0], &shared->target);
-  wrong.coarse_overlap = CoarseOverlap(s.points, t.points, wrong.target_from_source,
-                                       kDefaults.sac_ia.inlier_distance_m);
-  CheckPair(v.views[1], v.views[0], kDefaults, wrong);
-  EXPECT_FALSE(wrong.ok) << "skeleton overlap " << wrong.coarse_overlap;
-  EXPECT_NE(wrong.status.find("matches"), std::string::npos) << wrong.status;
+  const TrunkCylinder& c = *v.views[0].trunk->cylinder;
+  for (double angle_deg : {90.0, 40.0, -40.0}) {
+    PairResult wrong = right;
+    Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
+    turn.linear() = Eigen::AngleAxisd(angle_deg * M_PI / 180, c.axis).toRotationMatrix();
+    turn.translation() = c.point - turn.linear() * c.point;
+    wrong.target_from_source = turn * right.target_from_source;
+    wrong.coarse_overlap = CoarseOverlap(s.points, t.points, wrong.target_from_source,
+                                         kDefaults.sac_ia.inlier_distance_m);
+    CheckPair(v.views[1], v.views[0], kDefaults, wrong);
+    EXPECT_FALSE(wrong.ok) << angle_deg << " deg: skeleton overlap " << wrong.coarse_overlap
+                           << ", view overlap " << wrong.view_overlap;
+    EXPECT_NE(wrong.status.find("of points overlap"), std::string::npos)
+        << angle_deg << " deg: " << wrong.status;
+  }
 }
 
 }  // namespace

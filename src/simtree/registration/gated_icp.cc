@@ -148,9 +148,9 @@ IcpResult GatedPointToPlaneIcp(const PointCloud& source, const PointCloud& targe
               const Eigen::Vector3d& n = target.normals_[index[match]];
               const Eigen::Vector3d& q = target.points_[index[match]];
               const double r = (p - q).dot(n);
-              // Huber weight at a third of the stage distance.
-              const double k = distance / 3.0;
-              const double weight = std::abs(r) <= k ? 1.0 : k / std::abs(r);
+              // Huber weight at a share of the stage distance.
+              const double k = distance * options.huber_share;
+              const double weight = k <= 0 || std::abs(r) <= k ? 1.0 : k / std::abs(r);
               Eigen::Matrix<double, 6, 1> j;
               j.head<3>() = p.cross(n);
               j.tail<3>() = n;
@@ -190,6 +190,62 @@ IcpResult GatedPointToPlaneIcp(const PointCloud& source, const PointCloud& targe
   result.rmse_m = overlap.rmse_m;
   result.correspondences = overlap.matched;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+MedialShiftResult AlignMedialAxes(const PointCloud& source_medial, const PointCloud& target_medial,
+                                  const KDTreeFlann& target_tree, const Eigen::Isometry3d& initial,
+                                  const MedialShiftOptions& options) {
+  MedialShiftResult result;
+  result.target_from_source = initial;
+  if (source_medial.points_.empty() || target_medial.points_.empty()) return result;
+  struct Sum {
+    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+    double weight = 0.0;
+    int count = 0;
+  };
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+  int matches = 0;
+  for (double distance : options.max_distances_m) {
+    const double max_squared = distance * distance;
+    const double k = distance / 3.0;  // Huber: medial points scatter across their axes
+    for (int iteration = 0; iteration < options.iterations_per_stage; ++iteration) {
+      const Sum sum = oneapi::tbb::parallel_reduce(
+          oneapi::tbb::blocked_range<size_t>(0, source_medial.points_.size(), 512), Sum{},
+          [&](const oneapi::tbb::blocked_range<size_t>& range, Sum acc) {
+            std::vector<int> index(1);
+            std::vector<double> squared(1);
+            for (size_t i = range.begin(); i != range.end(); ++i) {
+              const Eigen::Vector3d p = initial * source_medial.points_[i] + shift;
+              if (target_tree.SearchKNN(p, 1, index, squared) < 1 || squared[0] > max_squared) {
+                continue;
+              }
+              const Eigen::Vector3d offset = target_medial.points_[index[0]] - p;
+              const double d = std::sqrt(squared[0]);
+              const double w = d <= k ? 1.0 : k / d;
+              acc.offset += w * offset;
+              acc.weight += w;
+              ++acc.count;
+            }
+            return acc;
+          },
+          [](Sum a, const Sum& b) {
+            a.offset += b.offset;
+            a.weight += b.weight;
+            a.count += b.count;
+            return a;
+          });
+      matches = sum.count;
+      if (sum.count < options.min_matches || sum.weight <= 0) break;
+      const Eigen::Vector3d step = sum.offset / sum.weight;
+      shift += step;
+      if (step.norm() < options.min_step_m) break;
+    }
+  }
+  result.matches = matches;
+  if (matches < options.min_matches || !shift.allFinite()) return result;
+  result.shift = shift;
+  result.target_from_source.translation() += shift;
   return result;
 }
 

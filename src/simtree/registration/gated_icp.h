@@ -7,6 +7,9 @@
 // them together (NOTES.md: ~47 mm of drift at 180 degrees even when started at the true pose).
 // Normals are oriented towards each view's camera, so a front and a back disagree by more than
 // the gate and never pair. Open3D's ICP has no such gate, hence this implementation.
+// (Measured since on synthetic captures: the gate keeps mostly grazing pairs, whose pull is the
+// most biased, so pairwise registration now runs without it and undoes the shells' pull with
+// AlignMedialAxes instead; docs/benchmarks.md, "The fine stage isolated".)
 
 #include <optional>
 #include <vector>
@@ -22,6 +25,8 @@ struct GatedIcpOptions {
   std::vector<double> max_distances_m = {0.06, 0.03, 0.015};
   int iterations_per_stage = 12;
   double max_normal_angle_deg = 45.0;
+  // Residuals beyond this share of the stage distance are down-weighted (Huber); 0: not at all.
+  double huber_share = 1.0 / 3.0;
   // Points whose neighbourhood is less plane-like than this (twigs, noise) are left out.
   double min_planarity = 0.0;
   // Stop a stage when an update moves by less than this (radians, metres).
@@ -79,6 +84,31 @@ IcpResult GatedPointToPlaneIcp(
     const open3d::geometry::KDTreeFlann& target_tree, const Eigen::Isometry3d& initial,
     const GatedIcpOptions& options = {}, const std::vector<float>* source_planarity = nullptr,
     const std::vector<float>* target_planarity = nullptr, const IcpPriors& priors = {});
+
+// The last step of fine registration: the shift (rotation kept) that brings the source's medial
+// points (registration_view.h) onto the target's. Surface ICP cannot find it when the views are
+// far apart: each sees its own half of every branch, the halves barely overlap (grazing surfaces
+// drop out), and ICP pulls the two shells together, moving the source towards the target camera
+// by about half a branch radius (measured: 15-30 mm at 144-180 deg). The branch axes both views
+// agree on.
+struct MedialShiftOptions {
+  // One stage per distance (metres), largest first; each runs up to `iterations_per_stage`.
+  std::vector<double> max_distances_m = {0.04, 0.02};
+  int iterations_per_stage = 10;
+  double min_step_m = 1e-4;
+  // The shift is rejected (the start kept) unless at least this many source points match.
+  int min_matches = 30;
+};
+struct MedialShiftResult {
+  Eigen::Isometry3d target_from_source = Eigen::Isometry3d::Identity();
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero();  // applied after the start, target frame
+  int matches = 0;
+};
+MedialShiftResult AlignMedialAxes(const open3d::geometry::PointCloud& source_medial,
+                                  const open3d::geometry::PointCloud& target_medial,
+                                  const open3d::geometry::KDTreeFlann& target_tree,
+                                  const Eigen::Isometry3d& initial,
+                                  const MedialShiftOptions& options = {});
 
 // Share of `source` points (after `transform`) with a target point within `distance_m` whose
 // normal agrees within `max_normal_angle_deg` (180: no gate), and their RMS distance.

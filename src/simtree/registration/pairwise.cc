@@ -33,7 +33,7 @@ double Spacing(const RegistrationView& source, const RegistrationView& target) {
 // cylinder and the plane are not.
 Eigen::Isometry3d SnapToPriors(Eigen::Isometry3d t, const RegistrationView& source,
                                const RegistrationView& target,
-                               const std::optional<SharedKeyRegion>& shared) {
+                               const std::optional<SharedKeyRegion>& shared, bool use_ground) {
   const bool cylinders =
       source.trunk && target.trunk && source.trunk->cylinder && target.trunk->cylinder;
   if (cylinders && shared) {
@@ -42,7 +42,7 @@ Eigen::Isometry3d SnapToPriors(Eigen::Isometry3d t, const RegistrationView& sour
     gap -= gap.dot(d) * d;  // across the axis only
     t.translation() += gap;
   }
-  if (source.ground && target.ground) {
+  if (use_ground && source.ground && target.ground) {
     Eigen::Vector3d foot = source.trunk ? source.trunk->base : source.cloud->GetCenter();
     foot -= source.ground->SignedDistance(foot) * source.ground->normal;
     t.translation() -= target.ground->SignedDistance(t * foot) * target.ground->normal;
@@ -114,14 +114,18 @@ void CheckPair(const RegistrationView& source, const RegistrationView& target,
   if (source.ground && target.ground) {
     result.up_disagreement_deg =
         AngleDeg(t.linear() * source.ground->normal, target.ground->normal);
-    if (result.up_disagreement_deg > options.max_up_disagreement_deg) {
+    if (options.check_ground && result.up_disagreement_deg > options.max_up_disagreement_deg) {
       problems.push_back(fmt::format("the grounds tilt {:.1f} deg apart (at most {:.1f})",
                                      result.up_disagreement_deg, options.max_up_disagreement_deg));
     }
-    // A point of the source ground, in the target frame, against the target ground.
-    const Eigen::Vector3d on_source = -source.ground->offset * source.ground->normal;
+    // The source ground at its trunk's foot (or below its cloud's centre), in the target frame,
+    // against the target ground: near the tree both views see the same patch.
+    Eigen::Vector3d on_source =
+        source.trunk ? source.trunk->base
+                     : Eigen::Vector3d(-source.ground->offset * source.ground->normal);
+    on_source -= source.ground->SignedDistance(on_source) * source.ground->normal;
     result.ground_offset_m = std::abs(target.ground->SignedDistance(t * on_source));
-    if (result.ground_offset_m > options.max_ground_offset_m) {
+    if (options.check_ground && result.ground_offset_m > options.max_ground_offset_m) {
       problems.push_back(fmt::format("the grounds are {:.0f} mm apart (at most {:.0f})",
                                      1e3 * result.ground_offset_m,
                                      1e3 * options.max_ground_offset_m));
@@ -163,9 +167,18 @@ void CheckPair(const RegistrationView& source, const RegistrationView& target,
                                    100 * result.coarse_overlap, ToString(source.coarse_input),
                                    100 * options.min_coarse_overlap));
   }
-  if (options.run_icp && result.fine.fitness < options.min_fitness) {
-    problems.push_back(fmt::format("only {:.0f}% of points overlap (at least {:.0f}%)",
-                                   100 * result.fine.fitness, 100 * options.min_fitness));
+  // The whole view, crown included: what tells a tree turned about its trunk from a right pair
+  // when the trunk and the key region's skeleton look alike from every side.
+  if (source.cloud && target.cloud && target.cloud_tree) {
+    const double last = options.icp_distance_factors.empty()
+                            ? options.icp.max_distances_m.back()
+                            : options.icp_distance_factors.back() * Spacing(source, target);
+    result.view_overlap =
+        MeasureOverlap(*source.cloud, *target.cloud, *target.cloud_tree, t, last).share;
+    if (result.view_overlap < options.min_fitness) {
+      problems.push_back(fmt::format("only {:.0f}% of points overlap (at least {:.0f}%)",
+                                     100 * result.view_overlap, 100 * options.min_fitness));
+    }
   }
   result.ok = problems.empty();
   if (result.ok) {
@@ -174,6 +187,78 @@ void CheckPair(const RegistrationView& source, const RegistrationView& target,
     result.status = problems.front();
     for (size_t i = 1; i < problems.size(); ++i) result.status += "; " + problems[i];
   }
+}
+
+FineResult RefinePair(const RegistrationView& source, const RegistrationView& target,
+                      const Eigen::Isometry3d& initial, const PairOptions& options) {
+  FineResult result;
+  if (!source.cloud || !target.cloud) {
+    result.icp.target_from_source = initial;
+    return result;
+  }
+  GatedIcpOptions icp = options.icp;
+  if (!options.icp_distance_factors.empty()) {
+    icp.max_distances_m.clear();
+    for (double f : options.icp_distance_factors) {
+      icp.max_distances_m.push_back(f * Spacing(source, target));
+    }
+  }
+  // The trunk axes join the fine stage only when the coarse result already roughly agrees
+  // with them (a trunk cylinder fitted across a hidden fork would pull the pair askew).
+  IcpPriors priors;
+  if (options.trunk_axis_weight > 0 && source.trunk && target.trunk && source.trunk->cylinder &&
+      target.trunk->cylinder) {
+    const TrunkCylinder& a = *source.trunk->cylinder;
+    const TrunkCylinder& b = *target.trunk->cylinder;
+    const Eigen::Isometry3d& t = initial;
+    if (AngleDeg(t.linear() * a.axis, b.axis) <= options.max_trunk_guard_tilt_deg &&
+        LineOffsetAt(b.point, b.axis, t * a.point) <= options.max_trunk_guard_offset_m) {
+      priors.line = LineConstraint{a.point, a.axis, a.half_length_m,
+                                   b.point, b.axis, options.trunk_axis_weight};
+      result.trunk_constraint = true;
+    }
+  }
+  // The ground likewise, guarded the same way (the views may see different patches of an
+  // uneven ground).
+  if (options.ground_weight > 0 && source.ground && target.ground) {
+    const Eigen::Isometry3d& t = initial;
+    const GroundPlane& a = *source.ground;
+    const GroundPlane& b = *target.ground;
+    // Three points on the source ground around the foot of the trunk (or of the view).
+    Eigen::Vector3d foot = source.trunk ? source.trunk->base : source.cloud->GetCenter();
+    foot -= a.SignedDistance(foot) * a.normal;
+    const Eigen::Vector3d e1 = a.normal.unitOrthogonal();
+    const Eigen::Vector3d e2 = a.normal.cross(e1);
+    const double reach = options.ground_reach_m;
+    PlaneConstraint plane{{foot + reach * e1, foot - 0.5 * reach * e1 + 0.87 * reach * e2,
+                           foot - 0.5 * reach * e1 - 0.87 * reach * e2},
+                          b.normal,
+                          b.offset,
+                          options.ground_weight};
+    bool agrees = AngleDeg(t.linear() * a.normal, b.normal) <= options.max_ground_guard_tilt_deg;
+    for (const auto& p : plane.source_points) {
+      agrees = agrees && std::abs(b.SignedDistance(t * p)) <= options.max_ground_guard_offset_m;
+    }
+    if (agrees) {
+      priors.plane = plane;
+      result.ground_constraint = true;
+    }
+  }
+  result.icp = GatedPointToPlaneIcp(*source.cloud, *target.cloud, *target.cloud_tree, initial, icp,
+                                    source.planarity.get(), target.planarity.get(), priors);
+  if (!options.medial_distance_factors.empty() && source.medial && target.medial &&
+      target.medial_tree) {
+    MedialShiftOptions medial = options.medial;
+    medial.max_distances_m.clear();
+    for (double f : options.medial_distance_factors) {
+      medial.max_distances_m.push_back(f * Spacing(source, target));
+    }
+    const MedialShiftResult shifted = AlignMedialAxes(
+        *source.medial, *target.medial, *target.medial_tree, result.icp.target_from_source, medial);
+    result.icp.target_from_source = shifted.target_from_source;
+    result.medial_shift = shifted.shift;
+  }
+  return result;
 }
 
 PairResult RegisterPair(const RegistrationView& source, const RegistrationView& target,
@@ -203,9 +288,9 @@ PairResult RegisterPair(const RegistrationView& source, const RegistrationView& 
 
   SacIaPrior prior;
   if (options.up_prior) {
-    // One physical direction seen from both views: the ground's normal when both see the
-    // ground, else the trunk's axis.
-    if (source.ground && target.ground) {
+    // One physical direction seen from both views: the trunk's axis (or, when asked, the
+    // ground's normal when both see the ground).
+    if (options.ground_as_up && source.ground && target.ground) {
       prior.source_up = source.ground->normal;
       prior.target_up = target.ground->normal;
     } else if (source.trunk && target.trunk) {
@@ -228,63 +313,31 @@ PairResult RegisterPair(const RegistrationView& source, const RegistrationView& 
     return result;
   }
   if (options.snap_to_priors) {
-    result.coarse.target_from_source =
-        SnapToPriors(result.coarse.target_from_source, source, target, shared);
+    result.coarse.target_from_source = SnapToPriors(result.coarse.target_from_source, source,
+                                                    target, shared, options.ground_as_up);
   }
   result.target_from_source = result.coarse.target_from_source;
   if (options.run_icp) {
-    GatedIcpOptions icp = options.icp;
-    if (!options.icp_distance_factors.empty()) {
-      icp.max_distances_m.clear();
-      for (double f : options.icp_distance_factors) {
-        icp.max_distances_m.push_back(f * Spacing(source, target));
+    FineResult fine = RefinePair(source, target, result.coarse.target_from_source, options);
+    if (target.trunk) {
+      const Eigen::Vector3d axis = TrunkAxis(target).normalized();
+      const Eigen::Vector3d& pivot = target.trunk->base;
+      for (double angle_deg : options.turned_alternatives_deg) {
+        Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
+        turn.linear() =
+            Eigen::AngleAxisd(angle_deg * std::numbers::pi / 180.0, axis).toRotationMatrix();
+        turn.translation() = pivot - turn.linear() * pivot;
+        FineResult turned = RefinePair(source, target, turn * fine.icp.target_from_source, options);
+        if (turned.icp.fitness > fine.icp.fitness) {
+          fine = std::move(turned);
+          result.turned_deg = angle_deg;
+        }
       }
     }
-    // The trunk axes join the fine stage only when the coarse result already roughly agrees
-    // with them (a trunk cylinder fitted across a hidden fork would pull the pair askew).
-    IcpPriors priors;
-    if (options.trunk_axis_weight > 0 && source.trunk && target.trunk && source.trunk->cylinder &&
-        target.trunk->cylinder) {
-      const TrunkCylinder& a = *source.trunk->cylinder;
-      const TrunkCylinder& b = *target.trunk->cylinder;
-      const Eigen::Isometry3d& t = result.coarse.target_from_source;
-      if (AngleDeg(t.linear() * a.axis, b.axis) <= options.max_trunk_guard_tilt_deg &&
-          LineOffsetAt(b.point, b.axis, t * a.point) <= options.max_trunk_guard_offset_m) {
-        priors.line = LineConstraint{a.point, a.axis, a.half_length_m,
-                                     b.point, b.axis, options.trunk_axis_weight};
-        result.trunk_constraint = true;
-      }
-    }
-    // The ground likewise, guarded the same way (the views may see different patches of an
-    // uneven ground).
-    if (options.ground_weight > 0 && source.ground && target.ground) {
-      const Eigen::Isometry3d& t = result.coarse.target_from_source;
-      const GroundPlane& a = *source.ground;
-      const GroundPlane& b = *target.ground;
-      // Three points on the source ground around the foot of the trunk (or of the view).
-      Eigen::Vector3d foot = source.trunk ? source.trunk->base : source.cloud->GetCenter();
-      foot -= a.SignedDistance(foot) * a.normal;
-      const Eigen::Vector3d e1 = a.normal.unitOrthogonal();
-      const Eigen::Vector3d e2 = a.normal.cross(e1);
-      const double reach = options.ground_reach_m;
-      PlaneConstraint plane{{foot + reach * e1, foot - 0.5 * reach * e1 + 0.87 * reach * e2,
-                             foot - 0.5 * reach * e1 - 0.87 * reach * e2},
-                            b.normal,
-                            b.offset,
-                            options.ground_weight};
-      bool agrees = AngleDeg(t.linear() * a.normal, b.normal) <= options.max_ground_guard_tilt_deg;
-      for (const auto& p : plane.source_points) {
-        agrees = agrees && std::abs(b.SignedDistance(t * p)) <= options.max_ground_guard_offset_m;
-      }
-      if (agrees) {
-        priors.plane = plane;
-        result.ground_constraint = true;
-      }
-    }
-    result.fine = GatedPointToPlaneIcp(*source.cloud, *target.cloud, *target.cloud_tree,
-                                       result.coarse.target_from_source, icp,
-                                       source.planarity.get(), target.planarity.get(), priors);
-    result.target_from_source = result.fine.target_from_source;
+    result.fine = fine.icp;
+    result.trunk_constraint = fine.trunk_constraint;
+    result.ground_constraint = fine.ground_constraint;
+    result.target_from_source = fine.icp.target_from_source;
   }
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.coarse_overlap =

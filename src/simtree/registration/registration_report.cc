@@ -66,6 +66,7 @@ nlohmann::ordered_json PairsToJson(const MultiViewResult& result) {
     p["match_rate"] = Round(r.match_rate, 1e-4);
     p["fitness"] = Round(r.fine.fitness, 1e-4);
     p["skeleton_overlap"] = Round(r.coarse_overlap, 1e-4);
+    p["view_overlap"] = Round(r.view_overlap, 1e-4);
     p["up_disagreement_deg"] = Number(r.up_disagreement_deg);
     p["ground_offset_mm"] = Number(1e3 * r.ground_offset_m);
     p["trunk_offset_mm"] = Number(1e3 * r.trunk_offset_m);

@@ -32,26 +32,23 @@ void ComputeFeatures(RegistrationView& view, bool skeleton,
       view.coarse, KDTreeSearchParamHybrid(options.feature_radius_factor * s, 100));
 }
 
-// The L1-medial skeleton of `indices` of the view's cloud, after moving them onto their branch
-// axes (medial_projection.h) unless told not to.
-PointCloud SkeletonCloud(const RegistrationView& view, const std::vector<size_t>& indices,
+// The view's points moved onto their branch axes (medial_projection.h), thinned to one per
+// `voxel_factor` point spacings (the projected points crowd onto the axes).
+std::vector<Eigen::Vector3d> MedialPoints(const RegistrationView& view,
+                                          const std::vector<size_t>& indices,
+                                          const RegistrationViewOptions& options) {
+  MedialProjectionOptions projection = options.projection;
+  projection.neighbourhood_m =
+      std::max(projection.neighbourhood_m, options.projection_radius_factor * view.spacing_m);
+  if (view.trunk) projection.max_shift_m = std::max(0.05, 0.6 * view.trunk->visible_width_m);
+  PointCloud projected;
+  projected.points_ = ProjectToMedialAxes(*view.cloud, *view.cloud_tree, indices, projection);
+  return projected.VoxelDownSample(options.skeleton_input_voxel_factor * view.spacing_m)->points_;
+}
+
+// The L1-medial skeleton of `points` (medial points, or raw ones when not projected).
+PointCloud SkeletonCloud(const RegistrationView& view, const std::vector<Eigen::Vector3d>& points,
                          const RegistrationViewOptions& options) {
-  std::vector<Eigen::Vector3d> points;
-  if (options.medial_projection) {
-    MedialProjectionOptions projection = options.projection;
-    projection.neighbourhood_m =
-        std::max(projection.neighbourhood_m, options.projection_radius_factor * view.spacing_m);
-    if (view.trunk) {
-      projection.max_shift_m = std::max(0.05, 0.6 * view.trunk->visible_width_m);
-    }
-    // The projected points crowd onto the axes: thin them (the skeleton's cost grows with them).
-    PointCloud projected;
-    projected.points_ = ProjectToMedialAxes(*view.cloud, *view.cloud_tree, indices, projection);
-    points =
-        projected.VoxelDownSample(options.skeleton_input_voxel_factor * view.spacing_m)->points_;
-  } else {
-    for (size_t i : indices) points.push_back(view.cloud->points_[i]);
-  }
   SkeletonOptions skeleton = options.skeleton;
   skeleton.initial_radius_m = std::max(0.04, options.skeleton_radius_factor * view.spacing_m);
   PointCloud cloud;
@@ -172,10 +169,15 @@ RegistrationView PrepareView(const std::string& name, const PreprocessResult& pr
 
   // The coarse points of the whole view; a pair picks those inside its key regions.
   if (view.CanRegister()) {
+    auto medial = std::make_shared<PointCloud>();
+    medial->points_ = MedialPoints(view, AllIndices(cloud->points_.size()), options);
+    view.medial = medial;
+    view.medial_tree = std::make_shared<open3d::geometry::KDTreeFlann>(*medial);
     const bool skeleton = options.coarse_input == CoarseInput::kTreeSkeleton ||
                           options.coarse_input == CoarseInput::kKeyRegionSkeleton;
     if (skeleton) {
-      view.coarse = SkeletonCloud(view, AllIndices(cloud->points_.size()), options);
+      view.coarse = SkeletonCloud(
+          view, options.medial_projection ? medial->points_ : cloud->points_, options);
     } else {
       view.coarse = *cloud->VoxelDownSample(options.coarse_voxel_factor * view.spacing_m);
     }

@@ -67,6 +67,11 @@ struct RegistrationView {
   // eigenvalues l0 <= l1 <= l2. Near 0 on twigs (a line: the normal is any direction across it)
   // and on noise; fine registration trusts only plane-like points' normals.
   std::shared_ptr<const std::vector<float>> planarity;
+  // The view's points moved onto their branch axes (medial_projection.h), one per point spacing:
+  // two views of a branch agree on its axis though they see opposite halves of its surface.
+  // Empty when the view cannot register.
+  std::shared_ptr<const open3d::geometry::PointCloud> medial;
+  std::shared_ptr<const open3d::geometry::KDTreeFlann> medial_tree;
   // Up in the camera frame: the ground's normal, else the trunk's axis, else the camera's -y.
   Eigen::Vector3d up = -Eigen::Vector3d::UnitY();
   std::optional<GroundPlane> ground;
