@@ -6,17 +6,12 @@
 
 #include <fmt/format.h>
 
+#include "simtree/core/statistics.h"
+
 namespace simtree {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return kNaN;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 ValueScore Score(double truth_f, double truth_z, double f, double z) {
   ValueScore s;

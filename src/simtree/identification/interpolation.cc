@@ -8,18 +8,12 @@
 #include <Eigen/QR>
 
 #include "simtree/core/error.h"
+#include "simtree/core/statistics.h"
 
 namespace simtree {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return kNaN;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 // Predictors of a branch for a model: (1), (1, log(r/L^2)) or (1, log r, log L).
 Eigen::VectorXd Features(FrequencyModelKind kind, double radius, double length) {

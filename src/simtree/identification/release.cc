@@ -3,19 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include <fmt/format.h>
+
+#include "simtree/core/statistics.h"
 
 namespace simtree {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return kNaN;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
 
 struct MarkerMotion {
   std::vector<double> speed;  // speed[i]: over the `lag` frames before frame i (NaN when unknown)
@@ -45,7 +42,7 @@ MarkerMotion Motion(const Trajectories& t, const MarkerTrack& track) {
         track.positions[i + 1] - 2 * track.positions[i] + track.positions[i - 1];
     for (int k = 0; k < 3; ++k) d2.push_back(std::abs(d[k]));
   }
-  const double sigma = d2.empty() ? 0.0 : Median(d2) / 0.6745 / std::sqrt(6.0);
+  const double sigma = d2.empty() ? 0.0 : UpperMedian(std::move(d2)) / 0.6745 / std::sqrt(6.0);
   m.noise_speed = sigma * std::sqrt(6.0) / (lag * dt);
   for (int i = 0; i < n; ++i) {
     if (!std::isnan(m.speed[i])) m.peak_speed = std::max(m.peak_speed, m.speed[i]);

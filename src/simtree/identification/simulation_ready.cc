@@ -8,21 +8,11 @@
 
 #include "simtree/core/error.h"
 #include "simtree/core/frames.h"
+#include "simtree/core/statistics.h"
 #include "simtree/core/units.h"
 #include "simtree/core/validate.h"
 
 namespace simtree {
-namespace {
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-}  // namespace
-
 double CantileverModeShape(double xi) {
   // beta L of the first mode: the smallest root of 1 + cos(x) cosh(x) = 0.
   constexpr double kBeta = 1.8751040687119611;

@@ -4,22 +4,13 @@
 #include <cmath>
 #include <limits>
 #include <set>
+#include <utility>
 
 #include <fmt/format.h>
 
+#include "simtree/core/statistics.h"
+
 namespace simtree {
-namespace {
-
-double Median(std::vector<double>& v) {
-  const size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + mid, v.end());
-  if (v.size() % 2 == 1) return v[mid];
-  const double upper = v[mid];
-  return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + mid));
-}
-
-}  // namespace
-
 TrackOutlierReport RemoveTrackOutliers(Trajectories& trajectories,
                                        const TrackOutlierOptions& options) {
   TrackOutlierReport report;
@@ -40,7 +31,7 @@ TrackOutlierReport RemoveTrackOutliers(Trajectories& trajectories,
           if (j != i && track.valid[j]) around.push_back(track.positions[j][axis]);
         }
         count = static_cast<int>(around.size());
-        if (count >= 2) median[axis] = Median(around);
+        if (count >= 2) median[axis] = Median(std::move(around));
       }
       if (count < 2) continue;
       deviation[i] = (track.positions[i] - median).norm();
@@ -48,7 +39,7 @@ TrackOutlierReport RemoveTrackOutliers(Trajectories& trajectories,
     }
     if (all.size() < 5) continue;
     // A robust scale of the ordinary deviations (noise and the smooth motion's small residue).
-    const double scale = 1.4826 * Median(all);
+    const double scale = 1.4826 * Median(std::move(all));
     const double limit = std::max(options.threshold * scale, options.min_deviation_m);
     for (int i = 0; i < n; ++i) {
       if (deviation[i] > limit) {

@@ -6,6 +6,7 @@
 
 #include <Eigen/Geometry>
 
+#include "simtree/core/statistics.h"
 #include "simtree/core/units.h"
 #include "simtree/reconstruction/local_geometry.h"
 #include "simtree/reconstruction/point_index.h"
@@ -13,13 +14,6 @@
 
 namespace simtree {
 namespace {
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const size_t mid = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + mid, v.end());
-  return v[mid];
-}
 
 struct LocalFit {
   bool counts = false;
@@ -157,8 +151,8 @@ void AssignRadii(Skeleton& skeleton, int anchor_node, double anchor_radius_m,
     if (has_anchor) {
       chain_ratio = 1.0;  // the trunk cylinder is the better measurement
     } else if (ratios.size() >= 2) {
-      chain_ratio =
-          std::clamp(Median(ratios), 1.0 / options.max_correction, options.max_correction);
+      chain_ratio = std::clamp(UpperMedian(ratios, 0.0), 1.0 / options.max_correction,
+                               options.max_correction);
       ++s.chains_fitted;
     }
     for (size_t k = 1; k < ids.size(); ++k) ratio[ids[k]] = chain_ratio;

@@ -3,25 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
 
+#include "simtree/core/statistics.h"
 #include "simtree/reconstruction/local_geometry.h"
 #include "simtree/reconstruction/point_index.h"
 
 namespace simtree {
-namespace {
-
-double Median(std::vector<double>& values) {
-  if (values.empty()) return 0.0;
-  const size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + mid, values.end());
-  return values[mid];
-}
-
-}  // namespace
-
 CloudScale MeasureCloudScale(std::span<const Eigen::Vector3d> all_points,
                              const CloudScaleOptions& options) {
   CloudScale scale;
@@ -68,9 +59,9 @@ CloudScale MeasureCloudScale(std::span<const Eigen::Vector3d> all_points,
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov, Eigen::EigenvaluesOnly);
     roughness.push_back(std::sqrt(std::max(eig.eigenvalues()[0], 0.0)));
   }
-  scale.spacing_m = Median(spacing) * density_correction;
-  scale.neighbourhood_m = Median(neighbourhood) * density_correction;
-  scale.roughness_m = Median(roughness);
+  scale.spacing_m = UpperMedian(std::move(spacing), 0.0) * density_correction;
+  scale.neighbourhood_m = UpperMedian(std::move(neighbourhood), 0.0) * density_correction;
+  scale.roughness_m = UpperMedian(std::move(roughness), 0.0);
   return scale;
 }
 

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 #include <Eigen/Dense>
 
+#include "simtree/core/statistics.h"
 #include "simtree/reconstruction/local_geometry.h"
 #include "simtree/reconstruction/point_index.h"
 
@@ -132,11 +133,6 @@ std::vector<Eigen::Vector2d> InPlane(std::span<const Eigen::Vector3d> points,
   return q;
 }
 
-double Median(std::vector<double> values) {
-  std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-  return values[values.size() / 2];
-}
-
 // A circle per slice along the axis, each from every point of its slab near the axis (not only
 // from what already fits the cylinder: a fork or a low branch must show), robust to the stray
 // points in it.
@@ -181,7 +177,7 @@ bool SliceConsensus(std::span<const TrunkSlice> slices, const Cylinder& c,
     if (s.radius_m > 0) radii.push_back(s.radius_m);
   }
   if (radii.size() < 3) return false;
-  const double radius = Median(radii);
+  const double radius = UpperMedian(radii);
   const double slack = options.inlier_threshold_m;
   std::vector<Eigen::Vector3d> centres;
   for (const TrunkSlice& s : slices) {
@@ -305,7 +301,7 @@ bool FitCircleRobust(std::span<const Eigen::Vector3d> points, const Eigen::Vecto
   for (int round = 0; round < 4; ++round) {
     std::vector<double> residuals(q.size());
     for (size_t i = 0; i < q.size(); ++i) residuals[i] = std::abs((q[i] - c).norm() - r);
-    const double width = std::max(2.5 * 1.4826 * Median(residuals), min_band_m);
+    const double width = std::max(2.5 * 1.4826 * UpperMedian(residuals), min_band_m);
     band.clear();
     for (size_t i = 0; i < q.size(); ++i) {
       if (residuals[i] <= width) band.push_back(points[i]);
@@ -412,7 +408,7 @@ TrunkFit FitTrunkCylinder(std::span<const Eigen::Vector3d> points, double base_h
       for (const TrunkSlice& slice : fit.slices) {
         if (slice.radius_m > 0) fitted.push_back(slice.radius_m);
       }
-      if (!fitted.empty()) c.radius = fit.cylinder.radius = Median(fitted);
+      if (!fitted.empty()) c.radius = fit.cylinder.radius = UpperMedian(fitted);
       fit.slices = FitSlices(c, fit.base, top, kept, options);
     }
 
@@ -420,7 +416,7 @@ TrunkFit FitTrunkCylinder(std::span<const Eigen::Vector3d> points, double base_h
     for (const TrunkSlice& slice : fit.slices) {
       if (slice.agrees) radii.push_back(slice.radius_m);
     }
-    fit.slice_radius_m = radii.empty() ? c.radius : Median(radii);
+    fit.slice_radius_m = radii.empty() ? c.radius : UpperMedian(radii);
     fit.slices_agree = radii.size() == fit.slices.size();
     if (fit.slices_agree) break;
 

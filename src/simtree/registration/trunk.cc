@@ -10,6 +10,8 @@
 #include <fmt/format.h>
 #include <Eigen/Eigenvalues>
 
+#include "simtree/core/statistics.h"
+
 namespace simtree {
 namespace {
 
@@ -74,12 +76,6 @@ std::vector<Group> GroupSlice(const std::vector<Eigen::Vector2d>& points, double
     g.width = (hi - lo).maxCoeff();
   }
   return groups;
-}
-
-double Median(std::vector<double> values) {
-  auto middle = values.begin() + values.size() / 2;
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
 }
 
 }  // namespace
@@ -183,7 +179,7 @@ std::optional<TrunkFit> FindTrunk(const open3d::geometry::PointCloud& cloud,
       continue;
     }
     gap = 0;
-    const double trunk_width = Median(widths);
+    const double trunk_width = UpperMedian(widths);
     if (is_split(next, trunk_width) && centres.size() >= 2) {
       // Confirm over the following slices.
       int confirmed = 0;
@@ -235,7 +231,7 @@ std::optional<TrunkFit> FindTrunk(const open3d::geometry::PointCloud& cloud,
   fit.axis = axis;
   fit.base = on_axis(bottom + first * t);
   fit.branch_point = on_axis(bottom + (last + 1) * t);
-  fit.visible_width_m = Median(widths);
+  fit.visible_width_m = UpperMedian(widths);
   fit.length_m = length;
   fit.fork_found = fork;
   fit.slices = static_cast<int>(centres.size());

@@ -12,6 +12,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "simtree/core/error.h"
+#include "simtree/core/statistics.h"
 #include "simtree/scan/point_spacing.h"
 
 namespace simtree {
@@ -22,13 +23,6 @@ using open3d::geometry::PointCloud;
 // The points of `cloud` at `indices`, with their colours and normals.
 PointCloud Select(const PointCloud& cloud, const std::vector<size_t>& indices) {
   return *cloud.SelectByIndex(indices);
-}
-
-double Median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  auto middle = values.begin() + values.size() / 2;
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
 }
 
 // Least-squares plane through `points`: unit normal and offset (normal . x + offset = 0).
@@ -127,7 +121,7 @@ std::optional<GroundPlane> FindGroundPlane(const PointCloud& cloud,
   GroundPlane ground;
   ground.normal = normal;
   ground.offset = offset;
-  ground.noise_m = 1.4826 * Median(residuals);
+  ground.noise_m = 1.4826 * UpperMedian(residuals, 0.0);
   ground.points = band.size();
   return ground;
 }
