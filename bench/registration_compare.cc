@@ -300,7 +300,7 @@ int main(int argc, char** argv) {
       add("ground constraint", [](PairOptions& o) { o.ground_weight = 0.5; });
       add("trunk constraint", [](PairOptions& o) { o.trunk_axis_weight = 1.0; });
       add("no snap", [](PairOptions& o) { o.snap_to_priors = false; });
-      add("no turned alternative", [](PairOptions& o) { o.turned_alternatives_deg.clear(); });
+      add("no turned alternative", [](PairOptions& o) { o.turned_refinements = 0; });
       for (const auto& [s, t] : pairs) {
         const double prep = prep_seconds[s] + prep_seconds[t];
         for (const auto& [name, options] : variants) {

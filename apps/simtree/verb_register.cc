@@ -34,7 +34,8 @@ void RegisterRegister(CLI::App& app) {
   CLI::App* verb = app.add_subcommand(
       "register",
       "Register the views of a capture into one cloud (paper III-A): key-region L1-medial "
-      "skeletons aligned by SAC-IA, then point-to-plane ICP with a normal-angle gate; pairs "
+      "skeletons aligned by SAC-IA, then point-to-plane ICP and a shift onto the branch axes, "
+      "tried at the turns about the trunk that overlap best; pairs "
       "around the tree, a pose graph, failed pairs and views reported, never merged");
   verb->add_option("input", args->input,
                    "A capture folder (scans/), the output of `simtree preprocess`, or a folder of "

@@ -1,7 +1,9 @@
 #include "simtree/registration/pairwise.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -48,6 +50,63 @@ Eigen::Isometry3d SnapToPriors(Eigen::Isometry3d t, const RegistrationView& sour
     t.translation() -= target.ground->SignedDistance(t * foot) * target.ground->normal;
   }
   return t;
+}
+
+// A turn by `angle_deg` about the line through `pivot` along unit `axis`.
+Eigen::Isometry3d TurnAbout(const Eigen::Vector3d& axis, const Eigen::Vector3d& pivot,
+                            double angle_deg) {
+  Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
+  turn.linear() = Eigen::AngleAxisd(angle_deg * std::numbers::pi / 180.0, axis).toRotationMatrix();
+  turn.translation() = pivot - turn.linear() * pivot;
+  return turn;
+}
+
+// The turns of `result` about the target's trunk axis worth refining: every `turn_step_deg`
+// around the circle, each settled by a short ICP on a sample of the source view (the fine stage's
+// distances, a few iterations each) and scored by its fitness at the last distance, as the full
+// refinement is; best first, one per peak (no two within a step and a half of each other or of
+// the result). A bare overlap count does not tell the turns apart: it needs a distance as wide
+// as half a step moves the crown (~13 cm), at which every turn scores alike.
+std::vector<double> ScreenTurns(const RegistrationView& source, const RegistrationView& target,
+                                const Eigen::Isometry3d& result, const PairOptions& options) {
+  std::vector<double> chosen;
+  const double step = options.turn_step_deg;
+  if (options.turned_refinements <= 0 || !(step > 0) || !target.trunk || !source.cloud ||
+      source.cloud->points_.empty()) {
+    return chosen;
+  }
+  const Eigen::Vector3d axis = TrunkAxis(target).normalized();
+  const Eigen::Vector3d& pivot = target.trunk->base;
+  GatedIcpOptions icp = options.icp;
+  if (!options.icp_distance_factors.empty()) {
+    icp.max_distances_m.clear();
+    for (double f : options.icp_distance_factors) {
+      icp.max_distances_m.push_back(f * Spacing(source, target));
+    }
+  }
+  icp.iterations_per_stage = options.turn_screen_iterations;
+  icp.max_source_points = options.turn_screen_points;
+  std::vector<std::pair<double, double>> scored;  // (fitness, angle)
+  for (double angle = step; angle < 360.0 - 0.5 * step; angle += step) {
+    const Eigen::Isometry3d turned = TurnAbout(axis, pivot, angle) * result;
+    scored.emplace_back(
+        GatedPointToPlaneIcp(*source.cloud, *target.cloud, *target.cloud_tree, turned, icp,
+                             source.planarity.get(), target.planarity.get())
+            .fitness,
+        angle);
+  }
+  std::sort(scored.begin(), scored.end(), std::greater<>());
+  auto apart = [&](double a, double b) {
+    const double d = std::fmod(std::abs(a - b), 360.0);
+    return std::min(d, 360.0 - d) > 1.5 * step;
+  };
+  for (const auto& [share, angle] : scored) {
+    if (static_cast<int>(chosen.size()) >= options.turned_refinements) break;
+    bool far = apart(angle, 0.0);
+    for (double c : chosen) far = far && apart(angle, c);
+    if (far) chosen.push_back(angle);
+  }
+  return chosen;
 }
 
 }  // namespace
@@ -261,8 +320,28 @@ FineResult RefinePair(const RegistrationView& source, const RegistrationView& ta
   return result;
 }
 
-PairResult RegisterPair(const RegistrationView& source, const RegistrationView& target,
-                        const PairOptions& options) {
+TurnedFineResult RefineWithTurns(const RegistrationView& source, const RegistrationView& target,
+                                 const Eigen::Isometry3d& initial, const PairOptions& options) {
+  TurnedFineResult result;
+  result.fine = RefinePair(source, target, initial, options);
+  if (!target.trunk) return result;
+  const Eigen::Vector3d axis = TrunkAxis(target).normalized();
+  const Eigen::Isometry3d found = result.fine.icp.target_from_source;
+  for (double angle_deg : ScreenTurns(source, target, found, options)) {
+    const Eigen::Isometry3d turn = TurnAbout(axis, target.trunk->base, angle_deg);
+    FineResult turned = RefinePair(source, target, turn * found, options);
+    if (turned.icp.fitness > result.fine.icp.fitness) {
+      result.fine = std::move(turned);
+      result.turned_deg = angle_deg;
+    }
+  }
+  return result;
+}
+
+namespace {
+
+PairResult RegisterPairOnce(const RegistrationView& source, const RegistrationView& target,
+                            const PairOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   PairResult result;
   result.source = source.name;
@@ -318,22 +397,10 @@ PairResult RegisterPair(const RegistrationView& source, const RegistrationView& 
   }
   result.target_from_source = result.coarse.target_from_source;
   if (options.run_icp) {
-    FineResult fine = RefinePair(source, target, result.coarse.target_from_source, options);
-    if (target.trunk) {
-      const Eigen::Vector3d axis = TrunkAxis(target).normalized();
-      const Eigen::Vector3d& pivot = target.trunk->base;
-      for (double angle_deg : options.turned_alternatives_deg) {
-        Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
-        turn.linear() =
-            Eigen::AngleAxisd(angle_deg * std::numbers::pi / 180.0, axis).toRotationMatrix();
-        turn.translation() = pivot - turn.linear() * pivot;
-        FineResult turned = RefinePair(source, target, turn * fine.icp.target_from_source, options);
-        if (turned.icp.fitness > fine.icp.fitness) {
-          fine = std::move(turned);
-          result.turned_deg = angle_deg;
-        }
-      }
-    }
+    const TurnedFineResult turned =
+        RefineWithTurns(source, target, result.target_from_source, options);
+    const FineResult& fine = turned.fine;
+    result.turned_deg = turned.turned_deg;
     result.fine = fine.icp;
     result.trunk_constraint = fine.trunk_constraint;
     result.ground_constraint = fine.ground_constraint;
@@ -347,6 +414,30 @@ PairResult RegisterPair(const RegistrationView& source, const RegistrationView& 
   result.match_rate = match.share;
   result.rmse_m = match.rmse_m;
   CheckPair(source, target, options, result);
+  return result;
+}
+
+}  // namespace
+
+PairResult RegisterPair(const RegistrationView& source, const RegistrationView& target,
+                        const PairOptions& options) {
+  PairResult result = RegisterPairOnce(source, target, options);
+  // A trunk found wrong in one view (a stem beside it, a fork taken for the trunk) misleads the
+  // up and centre priors and the snap in every turn; when the result overlaps too little to be
+  // trusted, the pair is registered once more without them and the better overlap kept.
+  const bool priors = options.up_prior || options.center_prior || options.snap_to_priors;
+  if (options.retry_without_priors && priors && result.fine.fitness < options.min_fitness) {
+    PairOptions plain = options;
+    plain.up_prior = plain.center_prior = plain.snap_to_priors = false;
+    PairResult retried = RegisterPairOnce(source, target, plain);
+    retried.seconds += result.seconds;
+    retried.retried_without_priors = true;
+    if (retried.fine.fitness > result.fine.fitness) {
+      return retried;
+    }
+    result.seconds = retried.seconds;
+    result.retried_without_priors = true;
+  }
   return result;
 }
 

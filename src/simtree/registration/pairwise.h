@@ -35,11 +35,20 @@ struct PairOptions {
   // ICP stage distances in point spacings (replaces icp.max_distances_m when not empty).
   std::vector<double> icp_distance_factors = {6.0, 3.0, 1.5};
   bool run_icp = true;
-  // After fine registration, the result turned about the target's trunk axis by each of these
-  // angles is refined too, and the one whose whole view overlaps most is kept: a tree whose
-  // key-region skeleton looks alike from opposite sides (SAC-IA's blind spot) is told apart by
-  // its crown. Empty: not tried.
-  std::vector<double> turned_alternatives_deg = {180.0};
+  // After fine registration, the result turned about the target's trunk axis is screened every
+  // `turn_step_deg` around the whole circle by its whole view's overlap (crown included), and the
+  // `turned_refinements` best turns are refined too; the one whose view overlaps most is kept.
+  // A tree whose key-region skeleton looks alike from another side (SAC-IA's blind spot: coarse
+  // misses 70-165 deg off about the trunk) is told apart by its crown. 0 refinements: not tried.
+  double turn_step_deg = 15.0;
+  int turned_refinements = 3;
+  // The screen: a short ICP from each turn, these iterations per stage on this many points.
+  int turn_screen_iterations = 4;
+  size_t turn_screen_points = 1000;
+  // A result whose view overlap is below min_fitness is registered once more without the up and
+  // centre priors and the snap (a trunk found wrong in one view misleads all three), and the
+  // result overlapping more is kept.
+  bool retry_without_priors = true;
   // After ICP, shift the source so the views' medial points (branch axes) meet (AlignMedialAxes),
   // at these distances in point spacings; empty: not at all.
   std::vector<double> medial_distance_factors = {6.0, 3.0};
@@ -103,12 +112,13 @@ struct PairResult {
   double up_disagreement_deg = 0.0;
   double ground_offset_m = 0.0;
   double trunk_offset_m = 0.0;
-  double coarse_overlap = 0.0;     // skeleton overlap after registration
-  double view_overlap = 0.0;       // whole-view overlap after registration (min_fitness)
-  double turned_deg = 0.0;         // the turned alternative kept (0: the result as found)
-  bool trunk_constraint = false;   // the trunk axes took part in fine registration
-  bool ground_constraint = false;  // the ground planes took part in fine registration
-  double seconds = 0.0;            // coarse + fine (view preparation not included)
+  double coarse_overlap = 0.0;          // skeleton overlap after registration
+  double view_overlap = 0.0;            // whole-view overlap after registration (min_fitness)
+  double turned_deg = 0.0;              // the turned alternative kept (0: the result as found)
+  bool retried_without_priors = false;  // the result of the retry without priors (kept or not)
+  bool trunk_constraint = false;        // the trunk axes took part in fine registration
+  bool ground_constraint = false;       // the ground planes took part in fine registration
+  double seconds = 0.0;                 // coarse + fine (view preparation not included)
 };
 
 // The fine stage alone from `initial` (target_from_source), as RegisterPair runs it after the
@@ -122,6 +132,18 @@ struct FineResult {
 FineResult RefinePair(const RegistrationView& source, const RegistrationView& target,
                       const Eigen::Isometry3d& initial, const PairOptions& options = {});
 
+// RefinePair from `initial`, and from `initial` turned about the target's trunk axis by the
+// turns a short-ICP screen finds best (turn_step_deg, turned_refinements); the result whose
+// view overlaps most (IcpResult::fitness) is kept.
+struct TurnedFineResult {
+  FineResult fine;
+  double turned_deg = 0.0;  // the turn kept (0: the result from `initial`)
+};
+TurnedFineResult RefineWithTurns(const RegistrationView& source, const RegistrationView& target,
+                                 const Eigen::Isometry3d& initial, const PairOptions& options = {});
+
+// Coarse, fine with turns, checks; when the result overlaps too little, once more without the
+// priors (retry_without_priors), keeping the better overlap.
 PairResult RegisterPair(const RegistrationView& source, const RegistrationView& target,
                         const PairOptions& options = {});
 
