@@ -52,6 +52,19 @@ Eigen::Isometry3d SnapToPriors(Eigen::Isometry3d t, const RegistrationView& sour
   return t;
 }
 
+// The fine stage's ICP options, its distances in metres from the pair's point spacing.
+GatedIcpOptions FineIcpOptions(const RegistrationView& source, const RegistrationView& target,
+                               const PairOptions& options) {
+  GatedIcpOptions icp = options.icp;
+  if (!options.icp_distance_factors.empty()) {
+    icp.max_distances_m.clear();
+    for (double f : options.icp_distance_factors) {
+      icp.max_distances_m.push_back(f * Spacing(source, target));
+    }
+  }
+  return icp;
+}
+
 // A turn by `angle_deg` about the line through `pivot` along unit `axis`.
 Eigen::Isometry3d TurnAbout(const Eigen::Vector3d& axis, const Eigen::Vector3d& pivot,
                             double angle_deg) {
@@ -77,13 +90,7 @@ std::vector<double> ScreenTurns(const RegistrationView& source, const Registrati
   }
   const Eigen::Vector3d axis = TrunkAxis(target).normalized();
   const Eigen::Vector3d& pivot = target.trunk->base;
-  GatedIcpOptions icp = options.icp;
-  if (!options.icp_distance_factors.empty()) {
-    icp.max_distances_m.clear();
-    for (double f : options.icp_distance_factors) {
-      icp.max_distances_m.push_back(f * Spacing(source, target));
-    }
-  }
+  GatedIcpOptions icp = FineIcpOptions(source, target, options);
   icp.iterations_per_stage = options.turn_screen_iterations;
   icp.max_source_points = options.turn_screen_points;
   std::vector<std::pair<double, double>> scored;  // (fitness, angle)
@@ -255,13 +262,7 @@ FineResult RefinePair(const RegistrationView& source, const RegistrationView& ta
     result.icp.target_from_source = initial;
     return result;
   }
-  GatedIcpOptions icp = options.icp;
-  if (!options.icp_distance_factors.empty()) {
-    icp.max_distances_m.clear();
-    for (double f : options.icp_distance_factors) {
-      icp.max_distances_m.push_back(f * Spacing(source, target));
-    }
-  }
+  GatedIcpOptions icp = FineIcpOptions(source, target, options);
   // The trunk axes join the fine stage only when the coarse result already roughly agrees
   // with them (a trunk cylinder fitted across a hidden fork would pull the pair askew).
   IcpPriors priors;
