@@ -87,7 +87,8 @@ TEST(Identify, RangesLeaveOutValuesWithALargeUncertainty) {
       {"b", value(1.2, 0.002, 0.040, 0.002)},
       {"c", value(1.1, 0.001, 0.170, 0.080)},  // damping known to 47%: uncertain
       {"d", value(2.5, 0.200, 0.035, 0.002)},  // frequency known to 8%: uncertain
-      {"e", value(1.3, ModalEstimate::kNaN, 0.050, ModalEstimate::kNaN)},    // no uncertainty given: counts
+      {"e", value(1.3, ModalEstimate::kNaN, 0.050,
+                  ModalEstimate::kNaN)},  // no uncertainty given: counts
       {"f", missing}};
   const MaterialRanges r = ComputeRanges(links);
   EXPECT_EQ(r.links, 6);
@@ -104,8 +105,8 @@ TEST(Identify, RangesLeaveOutValuesWithALargeUncertainty) {
   EXPECT_THAT(FormatRanges(r, "test"), HasSubstr("2 uncertain, left out: c, d"));
 
   // Tighter bounds leave out more; none measured gives NaN ranges.
-  const MaterialRanges tight = ComputeRanges(links, {.max_frequency_relative_std = 0.0015,
-                                                     .max_damping_relative_std = 0.04});
+  const MaterialRanges tight = ComputeRanges(
+      links, {.max_frequency_relative_std = 0.0015, .max_damping_relative_std = 0.04});
   EXPECT_EQ(tight.frequency_count, 3);  // a, c and e (no uncertainty)
   EXPECT_EQ(tight.damping_count, 2);    // a and e
   const MaterialRanges none = ComputeRanges({{"f", missing}});

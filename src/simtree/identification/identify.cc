@@ -18,7 +18,8 @@ const SignalEstimate* LinkIdentification::Find(EstimatorKind kind) const {
   return nullptr;
 }
 
-MaterialRanges ComputeRanges(const std::vector<LabeledEstimate>& links, const RangeOptions& bounds) {
+MaterialRanges ComputeRanges(const std::vector<LabeledEstimate>& links,
+                             const RangeOptions& bounds) {
   MaterialRanges r;
   r.links = static_cast<int>(links.size());
   r.bounds = bounds;

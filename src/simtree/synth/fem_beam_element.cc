@@ -105,8 +105,8 @@ Matrix12d BeamElement::Stiffness(const WoodProperties& wood) const {
   const double ra = radius_a, rb = radius_b;
   const double mid_factor = wood.StiffnessFactorAt(0.5 * (ra + rb));
   const double axial = mid_factor * e * kPi * ra * rb / l;
-  const double twist = mid_factor * g * kPi / 2.0 * 3.0 * std::pow(ra * rb, 3) /
-                       (l * (ra * ra + ra * rb + rb * rb));
+  const double twist =
+      mid_factor * g * kPi / 2.0 * 3.0 * std::pow(ra * rb, 3) / (l * (ra * ra + ra * rb + rb * rb));
   for (int i : {0, 6}) {
     for (int j : {0, 6}) k(i, j) = (i == j ? 1 : -1) * axial;
   }
