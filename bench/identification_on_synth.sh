@@ -53,16 +53,18 @@ sp, seed = sys.argv[4], sys.argv[5]
 def pct(v): return "-" if v is None else f"{100 * v:.2f}%"
 interp = scores.get("branches", {}).get("interpolated", {})
 for name, s in scores["links"].items():
-    # Table IV-style ranges over the values the estimator knows to the summary's bounds (a value
-    # without a standard deviation counts); "(n uncertain)": values left out.
+    # Table IV-style ranges over the values the estimator knows to the summary's bounds, by the
+    # rule of identify.h's ComputeRanges; "(n uncertain)": values left out.
     bound = materials["summary"]["max_relative_std"]
     f, z, uncertain = [], [], 0
     for link in materials["links"]:
         e = link.get("estimators", {}).get(name, {})
         if e.get("status") != "ok": continue
         fs, zs = e.get("frequency_std_hz"), e.get("damping_std")
-        f_ok = fs is None or fs / e["frequency_hz"] <= bound["frequency"]
-        z_ok = zs is None or zs / e["damping_ratio"] <= bound["damping"]
+        none_given = fs is None and zs is None  # the spectral estimators: every value counts
+        ok = lambda sd, v, b: sd is not None and sd / v <= b
+        f_ok = none_given or ok(fs, e["frequency_hz"], bound["frequency"])
+        z_ok = none_given or ok(zs, e["damping_ratio"], bound["damping"])
         if f_ok: f.append(e["frequency_hz"])
         if z_ok: z.append(e["damping_ratio"])
         uncertain += not (f_ok and z_ok)

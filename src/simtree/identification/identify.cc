@@ -23,8 +23,12 @@ MaterialRanges ComputeRanges(const std::vector<LabeledEstimate>& links,
   MaterialRanges r;
   r.links = static_cast<int>(links.size());
   r.bounds = bounds;
-  // Within the bound, or no uncertainty given (NaN: the spectral estimators).
-  auto certain = [](double value, double std, double bound) { return !(std / value > bound); };
+  // Within the bound. A value whose estimator gives no uncertainty at all (both NaN: the spectral
+  // estimators) counts; one whose uncertainty is missing or infinite while its estimator
+  // gives them (a fit whose covariance broke down) does not.
+  auto certain = [](double value, double std, double bound) {
+    return std::isfinite(std) && std / value <= bound;
+  };
   auto widen = [](double value, double* lo, double* hi) {
     *lo = std::isnan(*lo) ? value : std::min(*lo, value);
     *hi = std::isnan(*hi) ? value : std::max(*hi, value);
@@ -35,9 +39,11 @@ MaterialRanges ComputeRanges(const std::vector<LabeledEstimate>& links,
     ++r.measured;
     widen(e.frequency_hz, &r.all_min_frequency_hz, &r.all_max_frequency_hz);
     widen(e.damping_ratio, &r.all_min_damping, &r.all_max_damping);
-    const bool f_ok =
-        certain(e.frequency_hz, e.frequency_std_hz, bounds.max_frequency_relative_std);
-    const bool z_ok = certain(e.damping_ratio, e.damping_std, bounds.max_damping_relative_std);
+    const bool no_uncertainty = std::isnan(e.frequency_std_hz) && std::isnan(e.damping_std);
+    const bool f_ok = no_uncertainty || certain(e.frequency_hz, e.frequency_std_hz,
+                                                bounds.max_frequency_relative_std);
+    const bool z_ok =
+        no_uncertainty || certain(e.damping_ratio, e.damping_std, bounds.max_damping_relative_std);
     if (f_ok) {
       ++r.frequency_count;
       widen(e.frequency_hz, &r.min_frequency_hz, &r.max_frequency_hz);
