@@ -201,7 +201,11 @@ void RegisterIdentify(CLI::App& app) {
     WriteMaterialsJson(materials, args->output);
 
     std::printf("%s\n", FormatLinkTable(result).c_str());
-    std::printf("Ranges (paper Table IV):\n");
+    const RangeOptions bounds;
+    std::printf(
+        "Ranges (paper Table IV), over values known to %.0f%% (frequency) and %.0f%% (damping), "
+        "one standard deviation:\n",
+        100 * bounds.max_frequency_relative_std, 100 * bounds.max_damping_relative_std);
     std::printf("  %s\n", FormatRanges(result.Ranges(), ToString(result.estimator)).c_str());
     for (EstimatorKind kind : AllEstimators()) {
       if (kind == result.estimator || args->no_compare) continue;

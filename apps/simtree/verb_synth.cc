@@ -63,6 +63,9 @@ void RegisterSynth(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 0.9));
   verb->add_flag("--no-contact-sheet", args->no_sheet, "Do not write contact_sheet.png");
+  verb->add_flag("--truth-only", args->synth.truth_only,
+                 "Only the tree and its FEM truth: gt/ with tree, species, pull load and modal "
+                 "truth, no images (seconds; to check a species over many seeds)");
   verb->add_flag("--list-species", args->list_species,
                  "Print the species presets and what each is modelled on, then exit");
   verb->footer(Examples({
@@ -86,6 +89,10 @@ void RegisterSynth(CLI::App& app) {
     if (!args->species_file.empty()) RefuseToOverwriteInputs(args->output, {args->species_file});
     const SynthReport report = RunSynth(options, args->output);
     spdlog::info("synth: {}", report.Summary());
+    if (options.truth_only) {
+      std::printf("wrote %s: gt/ (tree, species, pull load, modal truth)\n", args->output.c_str());
+      return;
+    }
     std::printf(
         "wrote %s: %d views, %d pull frames, gt/ (tree, poses, marker tracks, modal "
         "truth)%s\n",

@@ -1,6 +1,7 @@
 #include "simtree/identification/identify.h"
 
 #include <cmath>
+#include <limits>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -67,6 +68,52 @@ TEST(Identify, EveryLinkWithinOnePercentInFrequencyAndFifteenInDampingUnderTrack
   EXPECT_NEAR(ranges.max_frequency_hz, 1.48, 0.015);
   EXPECT_THAT(FormatRanges(ranges, "test"), HasSubstr("(4 of 4 links measured)"));
   EXPECT_THAT(FormatLinkTable(r), HasSubstr("M0-M1"));
+}
+
+// A value the fit could not pin down does not set a range's end: it is listed as uncertain and
+// only the range over every value still shows it.
+TEST(Identify, RangesLeaveOutValuesWithALargeUncertainty) {
+  auto value = [](double f, double f_std, double zeta, double zeta_std) {
+    ModalEstimate e;
+    e.frequency_hz = f;
+    e.frequency_std_hz = f_std;
+    e.damping_ratio = zeta;
+    e.damping_std = zeta_std;
+    return e;
+  };
+  ModalEstimate missing;
+  missing.status = EstimateStatus::kFlat;
+  const std::vector<LabeledEstimate> links = {
+      {"a", value(1.0, 0.001, 0.030, 0.001)},
+      {"b", value(1.2, 0.002, 0.040, 0.002)},
+      {"c", value(1.1, 0.001, 0.170, 0.080)},  // damping known to 47%: uncertain
+      {"d", value(2.5, 0.200, 0.035, 0.002)},  // frequency known to 8%: uncertain
+      {"e", value(1.3, ModalEstimate::kNaN, 0.050, ModalEstimate::kNaN)},      // none given: counts
+      {"g", value(2.9, std::numeric_limits<double>::infinity(), 0.030, 0.0)},  // broken: uncertain
+      {"f", missing}};
+  const MaterialRanges r = ComputeRanges(links);
+  EXPECT_EQ(r.links, 7);
+  EXPECT_EQ(r.measured, 6);
+  EXPECT_EQ(r.frequency_count, 4);
+  EXPECT_EQ(r.damping_count, 5);  // g's damping has a (zero) standard deviation: counts
+  EXPECT_DOUBLE_EQ(r.min_frequency_hz, 1.0);
+  EXPECT_DOUBLE_EQ(r.max_frequency_hz, 1.3);  // d's 2.5 Hz left out, c's frequency kept
+  EXPECT_DOUBLE_EQ(r.min_damping, 0.030);
+  EXPECT_DOUBLE_EQ(r.max_damping, 0.050);  // c's 0.17 left out, d's damping kept
+  EXPECT_DOUBLE_EQ(r.all_max_damping, 0.170);
+  EXPECT_DOUBLE_EQ(r.all_max_frequency_hz, 2.9);
+  EXPECT_EQ(r.uncertain, (std::vector<std::string>{"c", "d", "g"}));
+  EXPECT_THAT(FormatRanges(r, "test"), HasSubstr("3 uncertain, left out: c, d, g"));
+
+  // Tighter bounds leave out more; none measured gives NaN ranges.
+  const MaterialRanges tight = ComputeRanges(
+      links, {.max_frequency_relative_std = 0.0015, .max_damping_relative_std = 0.04});
+  EXPECT_EQ(tight.frequency_count, 3);  // a, c and e (no uncertainty)
+  EXPECT_EQ(tight.damping_count, 3);    // a, e and g
+  const MaterialRanges none = ComputeRanges({{"f", missing}});
+  EXPECT_EQ(none.measured, 0);
+  EXPECT_TRUE(std::isnan(none.min_frequency_hz));
+  EXPECT_TRUE(none.uncertain.empty());
 }
 
 TEST(Identify, AGivenReleaseTimeAndWindowAreUsed) {

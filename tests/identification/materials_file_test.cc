@@ -56,6 +56,25 @@ TEST(MaterialsFile, JsonRoundTripWritesNullForWhatWasNotEstimated) {
   EXPECT_EQ(MaterialsToJson(back).dump(), j.dump());
 }
 
+// The summary's ranges leave out a value the fit is unsure of; a reader recomputes them alike.
+TEST(MaterialsFile, SummaryListsUncertainLinksAndReadsBackTheSame) {
+  MaterialsFile m = MaterialsFromIdentification(Identified(), "t.csv");
+  LinkMaterial& unsure = m.links[1];
+  ASSERT_EQ(unsure.value.status, EstimateStatus::kOk);
+  unsure.value.damping_ratio = 0.5;
+  unsure.value.damping_std = 0.2;  // 40%
+  const auto dir = test::TempDir();
+  WriteMaterialsJson(m, dir / "m.json");
+  const MaterialsFile back = ReadMaterialsJson(dir / "m.json");
+  EXPECT_EQ(back.ranges.uncertain, std::vector<std::string>{unsure.label});
+  EXPECT_EQ(back.ranges.damping_count, 1);
+  EXPECT_LT(back.ranges.max_damping, 0.1);
+  EXPECT_DOUBLE_EQ(back.ranges.all_max_damping, 0.5);
+  const nlohmann::ordered_json summary = MaterialsToJson(back)["summary"];
+  EXPECT_EQ(summary["uncertain"][0], unsure.label);
+  EXPECT_DOUBLE_EQ(summary["max_relative_std"]["damping"].get<double>(), 0.2);
+}
+
 TEST(MaterialsFile, BadFilesNameTheField) {
   const nlohmann::json good = MaterialsToJson(MaterialsFromIdentification(Identified(), "t.csv"));
   struct Case {

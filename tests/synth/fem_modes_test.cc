@@ -42,6 +42,20 @@ TEST(FemModes, UniformCantileverMatchesClosedForm) {
   }
 }
 
+// Young wood (wood.h): a uniform cantilever thinner than the mature radius bends with E times
+// (r / r_mature)^k, so its frequencies are the closed form's times that factor's square root.
+TEST(FemModes, YoungWoodCantileverMatchesClosedFormWithItsModulus) {
+  WoodProperties wood = test::TestWood();
+  const double length = 2.0, radius = 0.02;
+  const double f1 = test::CantileverFrequencyHz(test::kBetaL1, wood, length, radius);
+  wood.mature_radius_m = 0.08;
+  wood.young_wood_exponent = 1.0;  // a quarter of E at a quarter of the mature radius
+  const FemModel model(test::UniformCantilever({1, 2, 3}, length, radius, 20), wood);
+  const ModalBasis modes = ComputeModes(model, {.count = 2});
+  ASSERT_EQ(modes.count(), 2);
+  for (int i : {0, 1}) EXPECT_NEAR(modes.frequency_hz[i] / (0.5 * f1), 1.0, 1e-3) << i;
+}
+
 TEST(FemModes, DenseAndSparseSolversAgree) {
   WoodProperties wood = test::TestWood();
   wood.SetRayleighFromRatios(1.0, 0.04, 10.0, 0.03);

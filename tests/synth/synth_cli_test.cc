@@ -127,6 +127,19 @@ TEST(SynthCli, SameSeedSameBytes) {
   }
 }
 
+// --truth-only stops after the FEM oracle: gt/ only, and the same modal truth as the whole run.
+TEST(SynthCli, TruthOnlyWritesTheSameTruthWithoutImages) {
+  const fs::path dir = test::TempDir();
+  const fs::path whole = QuickCapture(dir / "whole", "--no-contact-sheet");
+  const fs::path truth = QuickCapture(dir / "truth", "--truth-only");
+  for (const char* file : {"gt/tree.json", "gt/modal.json", "gt/pull_load.json"}) {
+    EXPECT_EQ(test::ReadText(whole / file), test::ReadText(truth / file)) << file;
+  }
+  EXPECT_FALSE(fs::exists(truth / "scans"));
+  EXPECT_FALSE(fs::exists(truth / "pull"));
+  EXPECT_FALSE(fs::exists(truth / "gt" / "trajectories.csv"));
+}
+
 TEST(SynthCli, BadInputGivesAClearErrorAndNoOutput) {
   const fs::path dir = test::TempDir();
   test::CliResult r = test::RunCli("synth --species oak --out " + (dir / "a").string());

@@ -29,6 +29,17 @@ TEST(Wood, ImpossibleRayleighPairIsRefused) {
   EXPECT_THROW(wood.SetRayleighFromRatios(1.0, 0.01, 1.0, 0.05), InputError);
 }
 
+TEST(Wood, YoungWoodIsLessStiffBelowTheMatureRadius) {
+  WoodProperties wood;
+  EXPECT_EQ(wood.StiffnessFactorAt(0.001), 1.0);  // exponent 0: one modulus
+  wood.mature_radius_m = 0.04;
+  wood.young_wood_exponent = 0.5;
+  EXPECT_NEAR(wood.StiffnessFactorAt(0.01), 0.5, 1e-12);
+  EXPECT_EQ(wood.StiffnessFactorAt(0.04), 1.0);
+  EXPECT_EQ(wood.StiffnessFactorAt(0.2), 1.0);
+  EXPECT_EQ(wood.StiffnessFactorAt(0.0), 0.0);
+}
+
 TEST(Wood, ValidationNamesTheField) {
   WoodProperties wood;
   wood.density_kg_m3 = std::numeric_limits<double>::quiet_NaN();
@@ -40,6 +51,12 @@ TEST(Wood, ValidationNamesTheField) {
   }
   wood = WoodProperties{};
   wood.youngs_modulus_pa = -1;
+  EXPECT_THROW(ValidateWood(wood, "x"), InputError);
+  wood = WoodProperties{};
+  wood.young_wood_exponent = -0.5;
+  EXPECT_THROW(ValidateWood(wood, "x"), InputError);
+  wood = WoodProperties{};
+  wood.mature_radius_m = 0.0;
   EXPECT_THROW(ValidateWood(wood, "x"), InputError);
   EXPECT_NO_THROW(ValidateWood(WoodProperties{}, "x"));
 }

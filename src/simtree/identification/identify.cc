@@ -18,28 +18,61 @@ const SignalEstimate* LinkIdentification::Find(EstimatorKind kind) const {
   return nullptr;
 }
 
-MaterialRanges IdentificationResult::Ranges(std::optional<EstimatorKind> kind) const {
+MaterialRanges ComputeRanges(const std::vector<LabeledEstimate>& links,
+                             const RangeOptions& bounds) {
   MaterialRanges r;
-  std::vector<double> f, z;
-  for (const LinkIdentification& link : links) {
-    ++r.links;
-    const ModalEstimate* e = &link.value;
-    if (kind) {
-      const SignalEstimate* s = link.Find(*kind);
-      e = s ? &s->dominant : nullptr;
-    }
-    if (!e || e->status != EstimateStatus::kOk) continue;
+  r.links = static_cast<int>(links.size());
+  r.bounds = bounds;
+  // Within the bound. A value whose estimator gives no uncertainty at all (both NaN: the spectral
+  // estimators) counts; one whose uncertainty is missing or infinite while its estimator
+  // gives them (a fit whose covariance broke down) does not.
+  auto certain = [](double value, double std, double bound) {
+    return std::isfinite(std) && std / value <= bound;
+  };
+  auto widen = [](double value, double* lo, double* hi) {
+    *lo = std::isnan(*lo) ? value : std::min(*lo, value);
+    *hi = std::isnan(*hi) ? value : std::max(*hi, value);
+  };
+  for (const LabeledEstimate& link : links) {
+    const ModalEstimate& e = link.value;
+    if (e.status != EstimateStatus::kOk) continue;
     ++r.measured;
-    f.push_back(e->frequency_hz);
-    z.push_back(e->damping_ratio);
-  }
-  if (!f.empty()) {
-    r.min_frequency_hz = *std::min_element(f.begin(), f.end());
-    r.max_frequency_hz = *std::max_element(f.begin(), f.end());
-    r.min_damping = *std::min_element(z.begin(), z.end());
-    r.max_damping = *std::max_element(z.begin(), z.end());
+    widen(e.frequency_hz, &r.all_min_frequency_hz, &r.all_max_frequency_hz);
+    widen(e.damping_ratio, &r.all_min_damping, &r.all_max_damping);
+    const bool no_uncertainty = std::isnan(e.frequency_std_hz) && std::isnan(e.damping_std);
+    const bool f_ok = no_uncertainty || certain(e.frequency_hz, e.frequency_std_hz,
+                                                bounds.max_frequency_relative_std);
+    const bool z_ok =
+        no_uncertainty || certain(e.damping_ratio, e.damping_std, bounds.max_damping_relative_std);
+    if (f_ok) {
+      ++r.frequency_count;
+      widen(e.frequency_hz, &r.min_frequency_hz, &r.max_frequency_hz);
+    }
+    if (z_ok) {
+      ++r.damping_count;
+      widen(e.damping_ratio, &r.min_damping, &r.max_damping);
+    }
+    if (!f_ok || !z_ok) r.uncertain.push_back(link.label);
   }
   return r;
+}
+
+MaterialRanges IdentificationResult::Ranges(std::optional<EstimatorKind> kind,
+                                            const RangeOptions& bounds) const {
+  std::vector<LabeledEstimate> values;
+  for (const LinkIdentification& link : links) {
+    LabeledEstimate v{link.deflection.link.label, link.value};
+    if (kind) {
+      const SignalEstimate* s = link.Find(*kind);
+      if (s) {
+        v.value = s->dominant;
+      } else {
+        v.value.status = EstimateStatus::kFailed;
+      }
+    }
+    values.push_back(std::move(v));
+  }
+  return ComputeRanges(values, bounds);
 }
 
 IdentificationResult IdentifyMaterials(const Trajectories& input,
@@ -143,9 +176,17 @@ std::string FormatRanges(const MaterialRanges& r, const std::string& name) {
   if (r.measured == 0) {
     return fmt::format("{:<22} no link measured ({} links)", name, r.links);
   }
-  return fmt::format("{:<22} f {:.2f}~{:.2f} Hz   zeta {:.3f}~{:.3f}   ({} of {} links measured)",
-                     name, r.min_frequency_hz, r.max_frequency_hz, r.min_damping, r.max_damping,
-                     r.measured, r.links);
+  std::string out = fmt::format(
+      "{:<22} f {:.2f}~{:.2f} Hz   zeta {:.3f}~{:.3f}   ({} of {} links measured", name,
+      r.min_frequency_hz, r.max_frequency_hz, r.min_damping, r.max_damping, r.measured, r.links);
+  if (r.uncertain.empty()) return out + ")";
+  std::string labels;
+  for (const std::string& label : r.uncertain) labels += (labels.empty() ? "" : ", ") + label;
+  return out + fmt::format(
+                   "; {} uncertain, left out: {}; every value: f {:.2f}~{:.2f} Hz, zeta "
+                   "{:.3f}~{:.3f})",
+                   r.uncertain.size(), labels, r.all_min_frequency_hz, r.all_max_frequency_hz,
+                   r.all_min_damping, r.all_max_damping);
 }
 
 std::string FormatLinkTable(const IdentificationResult& result) {

@@ -46,16 +46,42 @@ struct LinkIdentification {
   bool measured() const { return value.status == EstimateStatus::kOk; }
 };
 
+// Table IV-style ranges must not be set by values the fit could not pin down: a value counts in
+// its range only when its relative standard deviation (the estimator's own, estimators.h) is
+// within these bounds. A value without one (the spectral estimators give none) always counts.
+// The bounds follow from what the ranges are for, not from any truth: a frequency known to 2%
+// (twice the 1% the identification aims at) and a damping ratio known to 20% (Table IV's damping
+// ranges are 1.4-2.5x wide: a 1-sigma band of +-20% still says where in it a value lies).
+struct RangeOptions {
+  double max_frequency_relative_std = 0.02;
+  double max_damping_relative_std = 0.20;
+};
+
 // Ranges over the links with a value (paper Table IV: "Natural frequency f (Hz)", "Damping
-// ratio"). NaN when no link has one.
+// ratio"): min/max over the values within the bounds, all_* over every value, and the links
+// left out of a range listed as uncertain. NaN when no value counts.
 struct MaterialRanges {
+  static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   int links = 0;
   int measured = 0;
-  double min_frequency_hz = std::numeric_limits<double>::quiet_NaN();
-  double max_frequency_hz = std::numeric_limits<double>::quiet_NaN();
-  double min_damping = std::numeric_limits<double>::quiet_NaN();
-  double max_damping = std::numeric_limits<double>::quiet_NaN();
+  RangeOptions bounds;
+  int frequency_count = 0, damping_count = 0;  // values inside the bounds
+  double min_frequency_hz = kNaN, max_frequency_hz = kNaN;
+  double min_damping = kNaN, max_damping = kNaN;
+  double all_min_frequency_hz = kNaN, all_max_frequency_hz = kNaN;
+  double all_min_damping = kNaN, all_max_damping = kNaN;
+  // Labels of measured links whose frequency or damping is outside its bound.
+  std::vector<std::string> uncertain;
 };
+
+// One link's value as the ranges see it.
+struct LabeledEstimate {
+  std::string label;
+  ModalEstimate value;
+};
+// `links`: every link (measured or not; only kOk values count).
+MaterialRanges ComputeRanges(const std::vector<LabeledEstimate>& links,
+                             const RangeOptions& bounds = {});
 
 struct IdentificationResult {
   TrackOutlierReport outliers;  // tracker jumps removed before the rest
@@ -65,7 +91,8 @@ struct IdentificationResult {
   EstimatorKind estimator = kDefaultEstimator;
   std::vector<LinkIdentification> links;
 
-  MaterialRanges Ranges(std::optional<EstimatorKind> kind = std::nullopt) const;
+  MaterialRanges Ranges(std::optional<EstimatorKind> kind = std::nullopt,
+                        const RangeOptions& bounds = {}) const;
 };
 
 // Every link of `markers` (markers.json) identified from `trajectories`. A link whose markers
@@ -77,7 +104,8 @@ IdentificationResult IdentifyMaterials(const Trajectories& trajectories,
                                        const IdentifyOptions& options = {},
                                        const std::string& source = "<trajectories>");
 
-// The paper's Table IV row for one tree, plus the counts: "species  f_min~f_max zeta_min~zeta_max".
+// The paper's Table IV row for one tree, plus the counts: "species  f_min~f_max zeta_min~zeta_max",
+// and the uncertain links left out (with the range over every value).
 std::string FormatRanges(const MaterialRanges& ranges, const std::string& name);
 // A per-link table (label, status, f, zeta with their standard deviations, and every estimator).
 std::string FormatLinkTable(const IdentificationResult& result);

@@ -166,11 +166,19 @@ nlohmann::ordered_json MaterialsToJson(const MaterialsFile& m) {
                    {"release_detected", m.release_detected},
                    {"release_note", m.release_note},
                    {"window_s", {Number(m.window_start_s), Number(m.window_end_s)}}};
+  const MaterialRanges& r = m.ranges;
   doc["summary"] = {
-      {"links", m.ranges.links},
-      {"measured", m.ranges.measured},
-      {"frequency_hz", {Number(m.ranges.min_frequency_hz), Number(m.ranges.max_frequency_hz)}},
-      {"damping_ratio", {Number(m.ranges.min_damping), Number(m.ranges.max_damping)}}};
+      {"links", r.links},
+      {"measured", r.measured},
+      {"frequency_hz", {Number(r.min_frequency_hz), Number(r.max_frequency_hz)}},
+      {"damping_ratio", {Number(r.min_damping), Number(r.max_damping)}},
+      {"max_relative_std",
+       {{"frequency", r.bounds.max_frequency_relative_std},
+        {"damping", r.bounds.max_damping_relative_std}}},
+      {"in_range", {{"frequency", r.frequency_count}, {"damping", r.damping_count}}},
+      {"uncertain", r.uncertain},
+      {"all_frequency_hz", {Number(r.all_min_frequency_hz), Number(r.all_max_frequency_hz)}},
+      {"all_damping_ratio", {Number(r.all_min_damping), Number(r.all_max_damping)}}};
   ojson links = ojson::array();
   for (const LinkMaterial& l : m.links) {
     ojson j;
@@ -240,7 +248,6 @@ MaterialsFile MaterialsFromJson(const nlohmann::json& doc, const std::string& so
     }
   }
   const auto& links = r.Array(r.Field(doc, "links", ""), "links");
-  std::vector<double> f, z;
   for (size_t i = 0; i < links.size(); ++i) {
     const std::string at = Element("links", i);
     const auto& j = r.Object(links[i], at);
@@ -278,20 +285,11 @@ MaterialsFile MaterialsFromJson(const nlohmann::json& doc, const std::string& so
                                   EstimateFromJson(r, e, Member(Member(at, "estimators"), name)));
       }
     }
-    if (l.value.status == EstimateStatus::kOk) {
-      f.push_back(l.value.frequency_hz);
-      z.push_back(l.value.damping_ratio);
-    }
     m.links.push_back(std::move(l));
   }
-  m.ranges.links = static_cast<int>(m.links.size());
-  m.ranges.measured = static_cast<int>(f.size());
-  if (!f.empty()) {
-    m.ranges.min_frequency_hz = *std::min_element(f.begin(), f.end());
-    m.ranges.max_frequency_hz = *std::max_element(f.begin(), f.end());
-    m.ranges.min_damping = *std::min_element(z.begin(), z.end());
-    m.ranges.max_damping = *std::max_element(z.begin(), z.end());
-  }
+  std::vector<LabeledEstimate> values;
+  for (const LinkMaterial& l : m.links) values.push_back({l.label, l.value});
+  m.ranges = ComputeRanges(values);
   if (r.Has(doc, "branches")) {
     const auto& branches = r.Array(doc["branches"], "branches");
     for (size_t i = 0; i < branches.size(); ++i) {

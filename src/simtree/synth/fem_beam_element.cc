@@ -100,10 +100,13 @@ Matrix12d BeamElement::Stiffness(const WoodProperties& wood) const {
   // integral_0^L dx / EA(x) (and / GJ(x)), in closed form for a linear radius. (Linear shape
   // functions would give the mean of EA instead, an O(h^2) error that shows wherever a curved
   // branch bends out of its plane and twists.)
+  // Young wood's lower modulus (wood.h): at the mid radius for stretch and twist (elements are a
+  // few cm long), at each Gauss point's radius for bending.
   const double ra = radius_a, rb = radius_b;
-  const double axial = e * kPi * ra * rb / l;
+  const double mid_factor = wood.StiffnessFactorAt(0.5 * (ra + rb));
+  const double axial = mid_factor * e * kPi * ra * rb / l;
   const double twist =
-      g * kPi / 2.0 * 3.0 * std::pow(ra * rb, 3) / (l * (ra * ra + ra * rb + rb * rb));
+      mid_factor * g * kPi / 2.0 * 3.0 * std::pow(ra * rb, 3) / (l * (ra * ra + ra * rb + rb * rb));
   for (int i : {0, 6}) {
     for (int j : {0, 6}) k(i, j) = (i == j ? 1 : -1) * axial;
   }
@@ -111,10 +114,11 @@ Matrix12d BeamElement::Stiffness(const WoodProperties& wood) const {
     for (int j : {3, 9}) k(i, j) = (i == j ? 1 : -1) * twist;
   }
   for (const GaussPoint& q : kGauss5) {
-    const Section s = SectionAt((1 - q.xi) * radius_a + q.xi * radius_b);
+    const double radius = (1 - q.xi) * radius_a + q.xi * radius_b;
+    const Section s = SectionAt(radius);
     const double w = q.weight * l;
     const Hermite hm = HermiteAt(q.xi, l);
-    const double bend = w * e * s.inertia;
+    const double bend = w * e * wood.StiffnessFactorAt(radius) * s.inertia;
     for (int i = 0; i < 4; ++i) {
       for (int j = 0; j < 4; ++j) {
         const double c = bend * hm.d2[i] * hm.d2[j];

@@ -58,6 +58,10 @@ struct SpeciesWood {
   double youngs_modulus_pa = 8.0e9;
   double shear_modulus_pa = 0.5e9;
   double density_kg_m3 = 900.0;  // green density: wood, water and bark
+  // Young wood is less stiff (wood.h): E and G fall as (r / mature_radius_m)^young_wood_exponent
+  // below mature_radius_m (docs/synth.md: the rule and its source).
+  double mature_radius_m = 0.02;
+  double young_wood_exponent = 0.0;
   // Rayleigh damping C = alpha M + beta K meets both anchors; between them the modal damping
   // ratio dips (zeta(f) = alpha / (4 pi f) + beta pi f), outside it grows.
   std::array<DampingAnchor, 2> damping = {DampingAnchor{1.0, 0.04}, DampingAnchor{6.0, 0.04}};

@@ -179,6 +179,39 @@ int CountTreePixels(const RenderResult& r) {
   return count;
 }
 
+// gt/synth.json: what was made and how long each part took (total: until now).
+void WriteSynthSummary(const SynthOptions& options, SynthReport& report, Clock::time_point start,
+                       const fs::path& path) {
+  report.total_s = SecondsSince(start);
+  const nlohmann::ordered_json summary = {{"format", "simtree.synth_report"},
+                                          {"version", 1},
+                                          {"species", report.species},
+                                          {"seed", report.seed},
+                                          {"quick", options.quick},
+                                          {"hard", options.hard},
+                                          {"branches", report.branches},
+                                          {"nodes", report.nodes},
+                                          {"levels", report.levels},
+                                          {"height_m", report.height_m},
+                                          {"markers", report.markers},
+                                          {"fem_dof", report.fem_dof},
+                                          {"fem_modes", report.fem_modes},
+                                          {"first_frequency_hz", report.first_frequency_hz},
+                                          {"pull_force_n", report.pull_force_n},
+                                          {"pull_deflection_m", report.pull_deflection_m},
+                                          {"pull_max_rotation_rad", report.pull_max_rotation_rad},
+                                          {"views", report.views},
+                                          {"frames", report.frames},
+                                          {"tree_pixels_per_view", report.tree_pixels_per_view},
+                                          {"seconds",
+                                           {{"tree", report.tree_s},
+                                            {"fem", report.fem_s},
+                                            {"scans", report.scans_s},
+                                            {"pull", report.pull_s},
+                                            {"total", report.total_s}}}};
+  WriteFileAtomically(path, summary.dump(1) + "\n");
+}
+
 }  // namespace
 
 std::string SynthReport::Summary() const {
@@ -341,6 +374,18 @@ SynthReport RunSynth(const SynthOptions& options, const fs::path& out) {
   const ModalTruth truth =
       ComputeModalTruth(model, modes, tree, pull_run.release_state, truth_options);
   report.fem_s = SecondsSince(fem_start);
+  if (options.truth_only) {
+    AtomicDirectory folder(out);
+    const fs::path gt = folder.path() / "gt";
+    fs::create_directories(gt);
+    WriteTreeJson(tree, gt / "tree.json");
+    WritePullLoad(pull, gt / "pull_load.json");
+    WriteModalTruth(truth, gt / "modal.json");
+    WriteSpeciesJson(species, gt / "species.json");
+    WriteSynthSummary(options, report, start, gt / "synth.json");
+    folder.Commit();
+    return report;
+  }
 
   // ---- 3. The sensor and the scene.
   const CameraIntrinsics intrinsics = sensor.Intrinsics();
@@ -461,34 +506,7 @@ SynthReport RunSynth(const SynthOptions& options, const fs::path& out) {
   WriteCaptureInfo(info, root / "capture.json");
   if (options.contact_sheet) WritePng(MakeContactSheet(tiles), root / "contact_sheet.png");
 
-  report.total_s = SecondsSince(start);
-  const nlohmann::ordered_json summary = {{"format", "simtree.synth_report"},
-                                          {"version", 1},
-                                          {"species", report.species},
-                                          {"seed", report.seed},
-                                          {"quick", options.quick},
-                                          {"hard", options.hard},
-                                          {"branches", report.branches},
-                                          {"nodes", report.nodes},
-                                          {"levels", report.levels},
-                                          {"height_m", report.height_m},
-                                          {"markers", report.markers},
-                                          {"fem_dof", report.fem_dof},
-                                          {"fem_modes", report.fem_modes},
-                                          {"first_frequency_hz", report.first_frequency_hz},
-                                          {"pull_force_n", report.pull_force_n},
-                                          {"pull_deflection_m", report.pull_deflection_m},
-                                          {"pull_max_rotation_rad", report.pull_max_rotation_rad},
-                                          {"views", report.views},
-                                          {"frames", report.frames},
-                                          {"tree_pixels_per_view", report.tree_pixels_per_view},
-                                          {"seconds",
-                                           {{"tree", report.tree_s},
-                                            {"fem", report.fem_s},
-                                            {"scans", report.scans_s},
-                                            {"pull", report.pull_s},
-                                            {"total", report.total_s}}}};
-  WriteFileAtomically(gt / "synth.json", summary.dump(1) + "\n");
+  WriteSynthSummary(options, report, start, gt / "synth.json");
   folder.Commit();
   return report;
 }

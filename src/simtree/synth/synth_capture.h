@@ -48,6 +48,9 @@ struct SynthOptions {
   double max_force_n = 400.0;
   // Also write contact_sheet.png.
   bool contact_sheet = true;
+  // Stop after the FEM oracle: write only gt/ (tree, species, pull load, modal truth, synth.json),
+  // no images. Seconds instead of a minute: to check a species' modal truth over many seeds.
+  bool truth_only = false;
   PngOptions png;
 };
 

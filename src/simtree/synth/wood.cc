@@ -1,5 +1,6 @@
 #include "simtree/synth/wood.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -10,6 +11,11 @@ namespace simtree {
 double WoodProperties::DampingRatioAt(double frequency_hz) const {
   const double pi = std::numbers::pi;
   return rayleigh_alpha / (4.0 * pi * frequency_hz) + rayleigh_beta * pi * frequency_hz;
+}
+
+double WoodProperties::StiffnessFactorAt(double radius_m) const {
+  if (young_wood_exponent == 0.0 || radius_m >= mature_radius_m) return 1.0;
+  return std::pow(std::max(radius_m, 0.0) / mature_radius_m, young_wood_exponent);
 }
 
 void WoodProperties::SetRayleighFromRatios(double f1_hz, double zeta1, double f2_hz, double zeta2) {
@@ -42,6 +48,7 @@ void ValidateWood(const WoodProperties& wood, const std::string& source) {
   positive(wood.youngs_modulus_pa, "youngs_modulus_pa");
   positive(wood.shear_modulus_pa, "shear_modulus_pa");
   positive(wood.density_kg_m3, "density_kg_m3");
+  positive(wood.mature_radius_m, "mature_radius_m");
   auto non_negative = [&](double value, const char* field) {
     if (!std::isfinite(value) || value < 0) {
       throw InputError(source, field,
@@ -50,6 +57,7 @@ void ValidateWood(const WoodProperties& wood, const std::string& source) {
   };
   non_negative(wood.rayleigh_alpha, "rayleigh_alpha");
   non_negative(wood.rayleigh_beta, "rayleigh_beta");
+  non_negative(wood.young_wood_exponent, "young_wood_exponent");
 }
 
 }  // namespace simtree
