@@ -122,6 +122,20 @@ TEST(Species, CustomFileChangesFieldsOverABase) {
   EXPECT_EQ(q.description, base.description);
 }
 
+TEST(Species, WholeFilesFromBeforeYoungWoodStillLoad) {
+  // A whole version-2 file written before the young-wood fields: one modulus, as it meant then.
+  nlohmann::json doc = Parse(SpeciesToJson(SpeciesPreset("acer_rubrum")).dump());
+  doc["wood"].erase("mature_radius_m");
+  doc["wood"].erase("young_wood_exponent");
+  const SpeciesParams q = SpeciesFromJson(doc, "old.json");
+  EXPECT_EQ(q.wood.young_wood_exponent, 0.0);
+  EXPECT_EQ(SpeciesToJson(q).dump(), SpeciesToJson(SpeciesPreset("acer_rubrum")).dump());
+  // Given, they are still read strictly.
+  doc["wood"]["young_wood_exponent"] = -1.0;
+  EXPECT_NE(ErrorOf([&] { SpeciesFromJson(doc, "old.json"); }).find("wood.young_wood_exponent"),
+            std::string::npos);
+}
+
 TEST(Species, StrictErrorsNameTheField) {
   const std::string preset = SpeciesToJson(SpeciesPreset("acer_rubrum")).dump();
   auto with = [&](const std::function<void(nlohmann::json&)>& edit) {

@@ -552,6 +552,13 @@ SpeciesParams SpeciesFromJson(const nlohmann::json& doc, const std::string& sour
   }
   full.erase("format");
   full.erase("version");
+  // Young wood's stiffness came after version 2's other fields: a whole file written before it
+  // means one modulus for every radius, so the two fields default to that instead of failing.
+  if (full.contains("wood") && full["wood"].is_object()) {
+    const SpeciesWood one_modulus;
+    full["wood"].emplace("mature_radius_m", one_modulus.mature_radius_m);
+    full["wood"].emplace("young_wood_exponent", one_modulus.young_wood_exponent);
+  }
 
   SpeciesParams params;
   JsonFieldReader fields(full, source);
