@@ -166,6 +166,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> captures;
   fs::path cache = fs::temp_directory_path() / "simtree_registration_bench";
   bool skip_baselines = false, skip_table1 = false, ablations = false, fine_study = false;
+  bool views_only = false;
   app.add_option("--synth-seeds", synth_seeds,
                  "Synthetic captures to make (seeds from --first-seed)");
   app.add_option("--first-seed", first_seed, "First seed")->capture_default_str();
@@ -186,6 +187,8 @@ int main(int argc, char** argv) {
   app.add_flag("--ablations", ablations, "Ours with each prior left out in turn");
   app.add_flag("--fine-study", fine_study,
                "Fine stages (ours, ours without priors, Open3D's ICP) from the same starts");
+  app.add_flag("--views", views_only,
+               "Each view's trunk and key region in the world frame (by the truth), no pairs");
   app.add_option("--json", json_path, "Every pair's outcome as JSON");
   app.add_option("--markdown", markdown_path, "The tables as markdown");
   CLI11_PARSE(app, argc, argv);
@@ -268,6 +271,38 @@ int main(int argc, char** argv) {
     };
     std::vector<double> prep_seconds;
     const std::vector<RegistrationView> ours = prepare({}, prep_seconds);
+    if (views_only) {
+      // A trunk or key region found wrong in one view stands out: the others agree in the world.
+      for (size_t v = 0; v < n; ++v) {
+        const RegistrationView& view = ours[v];
+        if (!view.trunk || !view.key_region) {
+          fmt::print("{} {}: {}\n", scene.label, view.name, view.failure);
+          continue;
+        }
+        const Eigen::Isometry3d& w = scene.poses[v].world_from_camera;
+        const Eigen::Vector3d base = w * view.trunk->base;
+        const Eigen::Vector3d fork = w * view.trunk->branch_point;
+        const Eigen::Vector3d key = w * view.key_region->center;
+        const Eigen::Vector3d axis = w.linear() * TrunkAxis(view);
+        double ground_z = std::numeric_limits<double>::quiet_NaN();
+        if (view.ground) {
+          ground_z = (w * (view.trunk->base -
+                           view.ground->SignedDistance(view.trunk->base) * view.ground->normal))
+                         .z();
+        }
+        fmt::print(
+            "{} {}: base ({:.3f} {:.3f} {:.3f}) fork ({:.3f} {:.3f} {:.3f}) found {} key "
+            "({:.3f} {:.3f} {:.3f}) r {:.2f} axis tilt {:.1f} deg cylinder {} ground z {:.3f} fork "
+            "above ground {:.3f} above base {:.3f} coarse {}\n",
+            scene.label, view.name, base.x(), base.y(), base.z(), fork.x(), fork.y(), fork.z(),
+            view.trunk->fork_found, key.x(), key.y(), key.z(), view.key_region->radius_m,
+            std::acos(std::clamp(axis.z(), -1.0, 1.0)) * 180.0 / std::numbers::pi,
+            view.trunk->cylinder.has_value(), ground_z,
+            HeightOf(view, view.trunk->branch_point, true),
+            HeightOf(view, view.trunk->branch_point, false), view.coarse.points_.size());
+      }
+      continue;
+    }
     std::vector<std::pair<size_t, size_t>> pairs;
     for (size_t s = 0; s < n; ++s) {
       for (size_t t = s + 1; t < n; ++t) pairs.emplace_back(t, s);
@@ -277,6 +312,7 @@ int main(int argc, char** argv) {
     PairOptions paper_options;
     paper_options.up_prior = paper_options.center_prior = paper_options.snap_to_priors = false;
     paper_options.trunk_axis_weight = paper_options.ground_weight = 0.0;
+    paper_options.retry_other_key_regions = false;
     for (const auto& [s, t] : pairs) {
       const PairResult& r =
           ours_results.emplace_back(RegisterPair(ours[s], ours[t], default_options));
@@ -482,6 +518,9 @@ int main(int argc, char** argv) {
         doc.back()["trunk_offset_mm"] = 1e3 * o.checks->trunk_offset_m;
         doc.back()["coarse_overlap"] = o.checks->coarse_overlap;
         doc.back()["fitness"] = o.checks->fine.fitness;
+        doc.back()["turned_deg"] = o.checks->turned_deg;
+        doc.back()["own_key_regions"] = o.checks->own_key_regions;
+        doc.back()["retried_without_priors"] = o.checks->retried_without_priors;
       }
     }
     std::ofstream(json_path) << doc.dump(1) << "\n";

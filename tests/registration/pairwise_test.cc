@@ -121,5 +121,34 @@ TEST(Pairwise, ATurnAboutTheTrunkIsFoundAgain) {
   EXPECT_GT(found.fine.icp.fitness, stuck.fine.icp.fitness);
 }
 
+TEST(Pairwise, AGroundSeenHighInOneViewFallsBackOnTheViewsOwnKeyRegions) {
+  // One view fits its ground 0.5 m higher (grass, another patch of an uneven ground): the shared
+  // height puts the other view's key region on the bare trunk below the fork, while each view's
+  // own key region still holds its fork.
+  const auto& v = Views();
+  RegistrationView high = v.views[1];
+  high.ground->offset -= 0.5;
+  const auto shared = SharedKeyRegions(high, v.views[0]);
+  ASSERT_TRUE(shared);
+  const Eigen::Vector3d a = v.poses[1].world_from_camera * shared->source.center;
+  const Eigen::Vector3d b = v.poses[0].world_from_camera * shared->target.center;
+  EXPECT_GT((a - b).norm(), 0.3);
+  auto error = [&](const PairResult& r) {
+    return PairPoseError(r.target_from_source, v.poses[1].world_from_camera,
+                         v.poses[0].world_from_camera, v.tree_points);
+  };
+  PairOptions own = kDefaults;
+  own.own_key_regions = true;
+  own.retry_other_key_regions = own.retry_without_priors = false;
+  const PairResult with_own = RegisterPair(high, v.views[0], own);
+  EXPECT_TRUE(with_own.own_key_regions);
+  EXPECT_LT(error(with_own).rotation_deg, 2.0);
+  EXPECT_LT(error(with_own).tree_rms_m, 0.025);
+  const PairResult found = RegisterPair(high, v.views[0], kDefaults);
+  EXPECT_TRUE(found.ok) << found.status;
+  EXPECT_LT(error(found).rotation_deg, 2.0);
+  EXPECT_LT(error(found).tree_rms_m, 0.025);
+}
+
 }  // namespace
 }  // namespace simtree

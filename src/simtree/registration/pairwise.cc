@@ -356,7 +356,18 @@ PairResult RegisterPairOnce(const RegistrationView& source, const RegistrationVi
 
   // What coarse registration aligns: the coarse points inside the pair's key regions, or all.
   std::optional<SharedKeyRegion> shared;
-  if (UsesKeyRegion(source.coarse_input)) {
+  if (UsesKeyRegion(source.coarse_input) && options.own_key_regions) {
+    if (source.key_region && target.key_region) {
+      // One radius, as SharedKeyRegions takes: the spheres hold the same share of the tree.
+      const double radius = std::max(source.key_region->radius_m, target.key_region->radius_m);
+      shared = SharedKeyRegion{KeyRegion{source.key_region->center, radius},
+                               KeyRegion{target.key_region->center, radius}, kNaN};
+    }
+    if (!shared) {
+      result.status = "no key region in both views";
+      return result;
+    }
+  } else if (UsesKeyRegion(source.coarse_input)) {
     shared = SharedKeyRegions(source, target);
     if (!shared) {
       result.status = "no key region shared by both views (a trunk axis lies flat)";
@@ -423,6 +434,23 @@ PairResult RegisterPairOnce(const RegistrationView& source, const RegistrationVi
 PairResult RegisterPair(const RegistrationView& source, const RegistrationView& target,
                         const PairOptions& options) {
   PairResult result = RegisterPairOnce(source, target, options);
+  result.own_key_regions = options.own_key_regions;
+  // Key regions placed at different physical points (one view's ground or trunk base seen far
+  // higher than the other's) make SAC-IA align different parts of the tree; the other choice
+  // of key regions is tried before the priors are given up.
+  if (options.retry_other_key_regions && UsesKeyRegion(source.coarse_input) &&
+      result.fine.fitness < options.min_fitness) {
+    PairOptions other = options;
+    other.own_key_regions = !options.own_key_regions;
+    PairResult retried = RegisterPairOnce(source, target, other);
+    retried.seconds += result.seconds;
+    retried.own_key_regions = other.own_key_regions;
+    if (retried.fine.fitness > result.fine.fitness) {
+      result = std::move(retried);
+    } else {
+      result.seconds = retried.seconds;
+    }
+  }
   // A trunk found wrong in one view (a stem beside it, a fork taken for the trunk) misleads the
   // up and centre priors and the snap in every turn; when the result overlaps too little to be
   // trusted, the pair is registered once more without them and the better overlap kept.
@@ -430,9 +458,11 @@ PairResult RegisterPair(const RegistrationView& source, const RegistrationView& 
   if (options.retry_without_priors && priors && result.fine.fitness < options.min_fitness) {
     PairOptions plain = options;
     plain.up_prior = plain.center_prior = plain.snap_to_priors = false;
+    plain.own_key_regions = result.own_key_regions;
     PairResult retried = RegisterPairOnce(source, target, plain);
     retried.seconds += result.seconds;
     retried.retried_without_priors = true;
+    retried.own_key_regions = result.own_key_regions;
     if (retried.fine.fitness > result.fine.fitness) {
       return retried;
     }

@@ -49,6 +49,17 @@ struct PairOptions {
   // centre priors and the snap (a trunk found wrong in one view misleads all three), and the
   // result overlapping more is kept.
   bool retry_without_priors = true;
+  // The pair's key regions: false, spheres at the lower of the two views' branching heights
+  // (SharedKeyRegions); true, each view's own key region around its own branching point.
+  bool own_key_regions = false;
+  // A result whose view overlap is below min_fitness is registered once more with the other
+  // choice of key regions (before the retry without priors), keeping the better overlap. The
+  // heights SharedKeyRegions compares are measured from each view's ground or visible trunk
+  // base, which one view may see 0.3-0.6 m higher than the others (grass, an uneven ground, a
+  // ground plane fitted to another patch): its shared region then sits on the bare trunk, far
+  // below the fork the other view's region holds, while both views' own forks agree within
+  // ~0.1 m (synthetic acer_rubrum, seeds 5, 8, 10; docs/registration.md).
+  bool retry_other_key_regions = true;
   // After ICP, shift the source so the views' medial points (branch axes) meet (AlignMedialAxes),
   // at these distances in point spacings; empty: not at all.
   std::vector<double> medial_distance_factors = {6.0, 3.0};
@@ -116,6 +127,7 @@ struct PairResult {
   double view_overlap = 0.0;            // whole-view overlap after registration (min_fitness)
   double turned_deg = 0.0;              // the turned alternative kept (0: the result as found)
   bool retried_without_priors = false;  // the result of the retry without priors (kept or not)
+  bool own_key_regions = false;         // the result kept was found with the views' own regions
   bool trunk_constraint = false;        // the trunk axes took part in fine registration
   bool ground_constraint = false;       // the ground planes took part in fine registration
   double seconds = 0.0;                 // coarse + fine (view preparation not included)
