@@ -121,33 +121,33 @@ TEST(Pairwise, ATurnAboutTheTrunkIsFoundAgain) {
   EXPECT_GT(found.fine.icp.fitness, stuck.fine.icp.fitness);
 }
 
-TEST(Pairwise, AGroundSeenHighInOneViewFallsBackOnTheViewsOwnKeyRegions) {
+TEST(Pairwise, OwnKeyRegionsHoldTheForkWhenOneGroundIsSeenHigh) {
   // One view fits its ground 0.5 m higher (grass, another patch of an uneven ground): the shared
   // height puts the other view's key region on the bare trunk below the fork, while each view's
-  // own key region still holds its fork.
+  // own key region still holds its fork, and registers the pair. (Here the shared regions'
+  // result is rescued by the turn screen and ICP; on synthetic acer_rubrum seeds 5, 8 and 10 it
+  // was not: docs/registration.md.)
   const auto& v = Views();
   RegistrationView high = v.views[1];
   high.ground->offset -= 0.5;
+  auto world = [&](int view, const Eigen::Vector3d& p) {
+    return Eigen::Vector3d(v.poses[view].world_from_camera * p);
+  };
   const auto shared = SharedKeyRegions(high, v.views[0]);
   ASSERT_TRUE(shared);
-  const Eigen::Vector3d a = v.poses[1].world_from_camera * shared->source.center;
-  const Eigen::Vector3d b = v.poses[0].world_from_camera * shared->target.center;
-  EXPECT_GT((a - b).norm(), 0.3);
-  auto error = [&](const PairResult& r) {
-    return PairPoseError(r.target_from_source, v.poses[1].world_from_camera,
-                         v.poses[0].world_from_camera, v.tree_points);
-  };
+  EXPECT_GT((world(1, shared->source.center) - world(0, shared->target.center)).norm(), 0.3);
+  EXPECT_LT((world(1, high.key_region->center) - world(0, v.views[0].key_region->center)).norm(),
+            0.1);
   PairOptions own = kDefaults;
   own.own_key_regions = true;
   own.retry_other_key_regions = own.retry_without_priors = false;
-  const PairResult with_own = RegisterPair(high, v.views[0], own);
-  EXPECT_TRUE(with_own.own_key_regions);
-  EXPECT_LT(error(with_own).rotation_deg, 2.0);
-  EXPECT_LT(error(with_own).tree_rms_m, 0.025);
-  const PairResult found = RegisterPair(high, v.views[0], kDefaults);
-  EXPECT_TRUE(found.ok) << found.status;
-  EXPECT_LT(error(found).rotation_deg, 2.0);
-  EXPECT_LT(error(found).tree_rms_m, 0.025);
+  const PairResult r = RegisterPair(high, v.views[0], own);
+  EXPECT_TRUE(r.ok) << r.status;
+  EXPECT_TRUE(r.own_key_regions);
+  const PoseError e = PairPoseError(r.target_from_source, v.poses[1].world_from_camera,
+                                    v.poses[0].world_from_camera, v.tree_points);
+  EXPECT_LT(e.rotation_deg, 2.0);
+  EXPECT_LT(e.tree_rms_m, 0.025);
 }
 
 }  // namespace
