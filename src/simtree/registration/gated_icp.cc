@@ -16,6 +16,10 @@ namespace {
 using open3d::geometry::KDTreeFlann;
 using open3d::geometry::PointCloud;
 
+// The sums below use TBB's deterministic reduce: the plain one splits work by stealing, so the
+// order floating-point sums are added in, and a borderline pair's outcome, changed from run to
+// run with the machine's load.
+
 // Target points searched per source point for one whose normal agrees.
 constexpr int kCandidates = 4;
 
@@ -123,7 +127,7 @@ IcpResult GatedPointToPlaneIcp(const PointCloud& source, const PointCloud& targe
     for (int iteration = 0; iteration < options.iterations_per_stage; ++iteration) {
       ++result.iterations;
       const Eigen::Matrix3d rotation = transform.linear();
-      const Accumulator sum = oneapi::tbb::parallel_reduce(
+      const Accumulator sum = oneapi::tbb::parallel_deterministic_reduce(
           oneapi::tbb::blocked_range<size_t>(0, sample.size(), 256), Accumulator{},
           [&](const oneapi::tbb::blocked_range<size_t>& range, Accumulator acc) {
             std::vector<int> index(kCandidates);
@@ -210,7 +214,7 @@ MedialShiftResult AlignMedialAxes(const PointCloud& source_medial, const PointCl
     const double max_squared = distance * distance;
     const double k = distance / 3.0;  // Huber: medial points scatter across their axes
     for (int iteration = 0; iteration < options.iterations_per_stage; ++iteration) {
-      const Sum sum = oneapi::tbb::parallel_reduce(
+      const Sum sum = oneapi::tbb::parallel_deterministic_reduce(
           oneapi::tbb::blocked_range<size_t>(0, source_medial.points_.size(), 512), Sum{},
           [&](const oneapi::tbb::blocked_range<size_t>& range, Sum acc) {
             std::vector<int> index(1);
@@ -261,7 +265,7 @@ Overlap MeasureOverlap(const PointCloud& source, const PointCloud& target,
     double squared = 0.0;
     int count = 0;
   };
-  const Sum sum = oneapi::tbb::parallel_reduce(
+  const Sum sum = oneapi::tbb::parallel_deterministic_reduce(
       oneapi::tbb::blocked_range<size_t>(0, source.points_.size(), 512), Sum{},
       [&](const oneapi::tbb::blocked_range<size_t>& range, Sum acc) {
         const int k = gate ? kCandidates : 1;
