@@ -347,6 +347,7 @@ PairResult RegisterPairOnce(const RegistrationView& source, const RegistrationVi
   PairResult result;
   result.source = source.name;
   result.target = target.name;
+  result.own_key_regions = options.own_key_regions;
   for (const RegistrationView* view : {&source, &target}) {
     if (!view->CanRegister()) {
       result.status = fmt::format("{}: {}", view->name, view->failure);
@@ -429,12 +430,21 @@ PairResult RegisterPairOnce(const RegistrationView& source, const RegistrationVi
   return result;
 }
 
+// Keeps whichever of `result` and `retried` overlaps more, charged with the time of both.
+void KeepBetterOverlap(PairResult retried, PairResult* result) {
+  retried.seconds += result->seconds;
+  if (retried.fine.fitness > result->fine.fitness) {
+    *result = std::move(retried);
+  } else {
+    result->seconds = retried.seconds;
+  }
+}
+
 }  // namespace
 
 PairResult RegisterPair(const RegistrationView& source, const RegistrationView& target,
                         const PairOptions& options) {
   PairResult result = RegisterPairOnce(source, target, options);
-  result.own_key_regions = options.own_key_regions;
   // Key regions placed at different physical points (one view's ground or trunk base seen far
   // higher than the other's) make SAC-IA align different parts of the tree; the other choice
   // of key regions is tried before the priors are given up.
@@ -442,14 +452,7 @@ PairResult RegisterPair(const RegistrationView& source, const RegistrationView& 
       result.fine.fitness < options.min_fitness) {
     PairOptions other = options;
     other.own_key_regions = !options.own_key_regions;
-    PairResult retried = RegisterPairOnce(source, target, other);
-    retried.seconds += result.seconds;
-    retried.own_key_regions = other.own_key_regions;
-    if (retried.fine.fitness > result.fine.fitness) {
-      result = std::move(retried);
-    } else {
-      result.seconds = retried.seconds;
-    }
+    KeepBetterOverlap(RegisterPairOnce(source, target, other), &result);
   }
   // A trunk found wrong in one view (a stem beside it, a fork taken for the trunk) misleads the
   // up and centre priors and the snap in every turn; when the result overlaps too little to be
@@ -459,14 +462,7 @@ PairResult RegisterPair(const RegistrationView& source, const RegistrationView& 
     PairOptions plain = options;
     plain.up_prior = plain.center_prior = plain.snap_to_priors = false;
     plain.own_key_regions = result.own_key_regions;
-    PairResult retried = RegisterPairOnce(source, target, plain);
-    retried.seconds += result.seconds;
-    retried.retried_without_priors = true;
-    retried.own_key_regions = result.own_key_regions;
-    if (retried.fine.fitness > result.fine.fitness) {
-      return retried;
-    }
-    result.seconds = retried.seconds;
+    KeepBetterOverlap(RegisterPairOnce(source, target, plain), &result);
     result.retried_without_priors = true;
   }
   return result;
