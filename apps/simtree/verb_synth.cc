@@ -62,6 +62,12 @@ void RegisterSynth(CLI::App& app) {
                    "tree would turn more than 0.3 rad (the FEM is linear)")
       ->capture_default_str()
       ->check(CLI::Range(0.0, 0.9));
+  verb->add_option("--pull-position", args->synth.pull_position,
+                   "Where the rope is tied, as a share of the pulled branch's length from its "
+                   "base: near the crotch (default) the whole tree swings, as in the paper's pull "
+                   "tests; far out (0.65) mostly the pulled branch, at its own higher mode")
+      ->capture_default_str()
+      ->check(CLI::Range(0.05, 0.95));
   verb->add_flag("--no-contact-sheet", args->no_sheet, "Do not write contact_sheet.png");
   verb->add_flag("--truth-only", args->synth.truth_only,
                  "Only the tree and its FEM truth: gt/ with tree, species, pull load and modal "

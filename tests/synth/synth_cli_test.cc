@@ -171,6 +171,24 @@ TEST(SynthCli, BadInputGivesAClearErrorAndNoOutput) {
   EXPECT_THAT(r.output, HasSubstr("--out"));
 }
 
+// Where the rope is tied moves the rope and nothing else: the same tree and markers (so the same
+// static scans), the rope at that share of the same branch, a different pull.
+TEST(SynthCli, PullPositionMovesOnlyTheRope) {
+  const fs::path dir = test::TempDir();
+  const fs::path near = QuickCapture(dir / "near", "--truth-only");
+  const fs::path far = QuickCapture(dir / "far", "--truth-only --pull-position 0.65");
+  EXPECT_EQ(test::ReadText(near / "gt" / "tree.json"), test::ReadText(far / "gt" / "tree.json"));
+  const Tree tree = ReadTreeJson(near / "gt" / "tree.json");
+  const PullLoad near_load = ReadPullLoad(near / "gt" / "pull_load.json");
+  const PullLoad far_load = ReadPullLoad(far / "gt" / "pull_load.json");
+  ASSERT_EQ(near_load.branch, far_load.branch);
+  const double length = tree.branches.at(near_load.branch).Length();
+  EXPECT_NEAR(near_load.arc_length, 0.35 * length, 1e-9);
+  EXPECT_NEAR(far_load.arc_length, 0.65 * length, 1e-9);
+  // Nearer the crotch the branch is stiffer: the same swing takes more force.
+  EXPECT_GT(near_load.force_n, far_load.force_n);
+}
+
 TEST(SynthCli, PullOptionsOutOfRangeAreRefusedBeforeAnythingIsWritten) {
   const fs::path dir = test::TempDir() / "never";
   for (const auto& change : std::vector<std::function<void(SynthOptions&)>>{
@@ -178,6 +196,9 @@ TEST(SynthCli, PullOptionsOutOfRangeAreRefusedBeforeAnythingIsWritten) {
            [](SynthOptions& o) { o.pull_deflection_m = std::nan(""); },
            [](SynthOptions& o) { o.pull_deflection_per_length = 0.0; },
            [](SynthOptions& o) { o.pull_deflection_per_length = 0.9; },
+           [](SynthOptions& o) { o.pull_position = 0.0; },
+           [](SynthOptions& o) { o.pull_position = 1.0; },
+           [](SynthOptions& o) { o.pull_position = std::nan(""); },
            [](SynthOptions& o) { o.max_pull_rotation_rad = 0.0; },
            [](SynthOptions& o) { o.max_pull_rotation_rad = 1.0; }}) {
     SynthOptions options;

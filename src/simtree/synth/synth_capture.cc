@@ -71,6 +71,10 @@ void CheckOptions(const SynthOptions& o) {
     fail("pull_deflection_per_length",
          fmt::format("expected (0, 0.5], got {}", o.pull_deflection_per_length));
   }
+  if (!(o.pull_position >= 0.05 && o.pull_position <= 0.95)) {
+    fail("pull_position",
+         fmt::format("expected [0.05, 0.95] of the branch's length, got {}", o.pull_position));
+  }
   if (!(o.max_pull_rotation_rad > 0 && o.max_pull_rotation_rad <= 0.5)) {
     fail("max_pull_rotation_rad",
          fmt::format("expected (0, 0.5] rad, got {}", o.max_pull_rotation_rad));
@@ -82,11 +86,15 @@ void CheckOptions(const SynthOptions& o) {
 
 // The pull test a person would set up: a rope round a first-level branch that carries taped
 // children (its sub-branches reach the most levels of tapeable thickness, so the pull excites a
-// whole chain of links, as in the paper), long and reachable from the ground, two thirds of the
-// way out, pulled outwards and down towards a stake in the ground.
+// whole chain of links, as in the paper), long and reachable from the ground, tied at
+// `SynthOptions::pull_position` of its length, pulled outwards and down towards a stake in the
+// ground.
 struct PullSetup {
   int branch = -1;
-  double arc_length = 0.0;
+  // The branch's outer part (two thirds of the way out), which chooses it and sets the pull
+  // camera's distance to the crown: the markers do not depend on where the rope is tied.
+  Eigen::Vector3d crown_point = Eigen::Vector3d::Zero();
+  double arc_length = 0.0;  // where the rope is tied
   Eigen::Vector3d attach = Eigen::Vector3d::Zero();
   Eigen::Vector3d anchor = Eigen::Vector3d::Zero();
   Eigen::Vector3d outward = Eigen::Vector3d::UnitX();  // horizontal
@@ -107,37 +115,37 @@ std::vector<int> TapeableDepth(const Tree& tree, double min_radius_m) {
   return depth;
 }
 
-PullSetup ChoosePull(const Tree& tree, double min_tape_radius_m) {
+PullSetup ChoosePull(const Tree& tree, double min_tape_radius_m, double pull_position) {
   PullSetup best;
   double best_score = -std::numeric_limits<double>::infinity();
   const std::vector<int> depth = TapeableDepth(tree, min_tape_radius_m);
   for (const Branch& b : tree.branches) {
     if (b.level != 1 || b.nodes.size() < 3) continue;
     const double length = b.Length();
-    const double s = 0.65 * length;
-    const Eigen::Vector3d p = b.PointAt(s);
+    const Eigen::Vector3d p = b.PointAt(0.65 * length);
     Eigen::Vector3d out(p.x(), p.y(), 0.0);
     if (out.norm() < 0.05) continue;  // straight above the trunk: no room to pull sideways
     // Carrying taped levels first (a level counts as much as a metre of branch), then long and
-    // within reach (a person ties a rope at up to about 2.2 m).
+    // within reach (a person reaches up to about 2.2 m).
     const double reach_penalty = std::max(0.0, p.z() - 2.2);
     const double score = depth[b.id] + length + 0.5 * out.norm() - 3.0 * reach_penalty;
     if (score > best_score) {
       best_score = score;
       best.branch = b.id;
-      best.arc_length = s;
-      best.attach = p;
+      best.crown_point = p;
       best.outward = out.normalized();
     }
   }
-  if (best.branch < 0) {
+  if (best.branch >= 0) {
+    best.arc_length = pull_position * tree.branches[best.branch].Length();
+  } else {
     // A tree without usable first-level branches: pull the trunk at two thirds of its height.
-    const Branch& trunk = tree.trunk();
     best.branch = 0;
-    best.arc_length = 0.66 * trunk.Length();
-    best.attach = trunk.PointAt(best.arc_length);
+    best.arc_length = 0.66 * tree.trunk().Length();
+    best.crown_point = tree.trunk().PointAt(best.arc_length);
     best.outward = Eigen::Vector3d::UnitX();
   }
+  best.attach = tree.branches[best.branch].PointAt(best.arc_length);
   // The stake: 2.5 m further out on the ground, so the rope runs outwards and down.
   best.anchor = best.attach + 2.5 * best.outward;
   best.anchor.z() = 0.0;
@@ -245,7 +253,7 @@ SynthReport RunSynth(const SynthOptions& options, const fs::path& out) {
   }
   Tree tree = GenerateTree(species, options.seed, generator);
   MarkerPlacementOptions placement;
-  const PullSetup pull_setup = ChoosePull(tree, placement.min_radius_m);
+  const PullSetup pull_setup = ChoosePull(tree, placement.min_radius_m, options.pull_position);
   const Eigen::Isometry3d pull_camera = PullCameraPose(tree, pull_setup.outward);
   placement.count = options.markers;
   placement.first_chain_branch = pull_setup.branch;  // the pulled branch and its children
@@ -256,7 +264,7 @@ SynthReport RunSynth(const SynthOptions& options, const fs::path& out) {
   // markers no tracker finds at 640 x 576.
   const SensorModel sensor = options.hard ? SensorModel::Hard() : SensorModel::AzureKinectNfov();
   constexpr double kMinTapeWidthPx = 2.0;
-  const double crown_distance = (pull_camera.translation() - pull_setup.attach).norm();
+  const double crown_distance = (pull_camera.translation() - pull_setup.crown_point).norm();
   placement.min_radius_m = std::max(
       placement.min_radius_m, 0.5 * kMinTapeWidthPx * crown_distance / sensor.FocalLengthPx());
   // Tapes the pull camera does not see at rest are moved (a person tapes what they see on the
