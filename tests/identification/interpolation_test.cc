@@ -24,7 +24,7 @@ TEST(Interpolation, BranchesThatFollowTheCantileverLawAreFittedByIt) {
   const InterpolationModel model = FitInterpolationModel(tree, samples);
   EXPECT_EQ(model.kind, FrequencyModelKind::kCantilever) << model.Describe();
   EXPECT_NEAR(model.coefficients[1], 1.0, 1e-9);
-  EXPECT_NEAR(model.leave_one_out_log_rms, 0.0, 1e-9);
+  EXPECT_NEAR(model.leave_one_out_log_error, 0.0, 1e-9);
   // Branch 3 lies inside the measured range: predicted exactly.
   const Branch& b3 = tree.branches[3];
   const double truth = Cantilever(b3, 40.0);
@@ -39,11 +39,29 @@ TEST(Interpolation, BranchesThatFollowTheCantileverLawAreFittedByIt) {
 
 TEST(Interpolation, BranchesThatAllSwingTogetherGiveTheirMedian) {
   const Tree tree = test::IdentificationTree();
-  const std::vector<BranchSample> samples = {
-      {0, 1.10, 0.03}, {1, 1.12, 0.04}, {2, 1.09, 0.05}, {4, 1.11, 0.04}};
+  // Siblings on the trunk: no one hangs from another, so the ancestor model ties with the median
+  // and the simpler one is kept.
+  const std::vector<BranchSample> samples = {{1, 1.10, 0.03}, {2, 1.12, 0.04}, {3, 1.09, 0.05}};
   const InterpolationModel model = FitInterpolationModel(tree, samples);
   EXPECT_EQ(model.kind, FrequencyModelKind::kMedian) << model.Describe();
-  EXPECT_NEAR(model.Frequency(0.01, 0.3), std::sqrt(1.10 * 1.11), 1e-9);
+  EXPECT_NEAR(model.Frequency(0.01, 0.3), 1.10, 1e-9);
+  EXPECT_NEAR(model.Frequency(tree, 4), 1.10, 1e-9);
+}
+
+// A pull test's modes live in subtrees: the pulled branch 1 and the branch 4 hanging from it
+// swing at its own 2 Hz, the trunk and the rest of the tree at 1 Hz, whatever their size. The
+// nearest measured ancestor predicts the branches of each subtree; the size laws cannot.
+TEST(Interpolation, BranchesThatSwingWithTheirSubtreeTakeTheirMeasuredAncestors) {
+  const Tree tree = test::IdentificationTree();  // 1, 2, 3 on the trunk 0; 4 on 1; 5 on 2
+  const InterpolationModel model = FitInterpolationModel(
+      tree, {{0, 1.0, 0.03}, {1, 2.0, 0.03}, {4, 2.0, 0.03}, {2, 1.0, 0.03}, {5, 1.0, 0.03}});
+  EXPECT_EQ(model.kind, FrequencyModelKind::kNearestMeasuredAncestor) << model.Describe();
+  EXPECT_THAT(model.Describe(), HasSubstr("nearest measured ancestor"));
+  EXPECT_DOUBLE_EQ(model.Frequency(tree, 3), 1.0);   // hangs from the trunk
+  EXPECT_DOUBLE_EQ(model.Frequency(tree, 4), 2.0);   // from branch 1
+  EXPECT_DOUBLE_EQ(model.Frequency(tree, 0), 1.0);   // no ancestor: the median
+  EXPECT_DOUBLE_EQ(model.Frequency(0.5, 0.1), 1.0);  // no place in the tree: the median
+  EXPECT_THROW(model.Frequency(tree, 6), InputError);
 }
 
 TEST(Interpolation, DampingByLevelElseTheNearestLevel) {

@@ -21,6 +21,7 @@ Eigen::VectorXd Features(FrequencyModelKind kind, double radius, double length) 
   const double ll = std::log(std::max(length, 1e-6));
   switch (kind) {
     case FrequencyModelKind::kMedian:
+    case FrequencyModelKind::kNearestMeasuredAncestor:  // the median where no ancestor is measured
       return Eigen::VectorXd::Ones(1);
     case FrequencyModelKind::kCantilever:
       return Eigen::Vector2d(1.0, lr - 2.0 * ll);
@@ -30,11 +31,11 @@ Eigen::VectorXd Features(FrequencyModelKind kind, double radius, double length) 
   return Eigen::VectorXd::Ones(1);
 }
 
-// Least-squares coefficients of log f on the features (the median of log f for kMedian, so one
-// odd branch does not pull the constant).
+// Least-squares coefficients of log f on the features (the median of log f for the one-constant
+// models, so one odd branch does not pull the constant).
 std::vector<double> Fit(FrequencyModelKind kind, const std::vector<Eigen::VectorXd>& x,
                         const std::vector<double>& y) {
-  if (kind == FrequencyModelKind::kMedian) return {Median(y)};
+  if (x.front().size() == 1) return {Median(y)};
   const int n = static_cast<int>(y.size()), p = static_cast<int>(x.front().size());
   Eigen::MatrixXd a(n, p);
   Eigen::VectorXd b(n);
@@ -62,18 +63,51 @@ bool Varies(const std::vector<Eigen::VectorXd>& x, int column) {
   return hi - lo > 0.05;  // 5% in log: anything less is one size
 }
 
+// The log frequency of the nearest ancestor of `branch` with a finite value in `log_f`, else
+// `fallback`.
+double AncestorLogFrequency(const Tree& tree, const std::vector<double>& log_f, int branch,
+                            double fallback) {
+  for (int a = tree.branches[branch].parent; a >= 0; a = tree.branches[a].parent) {
+    if (std::isfinite(log_f[a])) return log_f[a];
+  }
+  return fallback;
+}
+
 }  // namespace
 
 const char* ToString(FrequencyModelKind kind) {
   switch (kind) {
     case FrequencyModelKind::kMedian:
       return "median";
+    case FrequencyModelKind::kNearestMeasuredAncestor:
+      return "nearest_measured_ancestor";
     case FrequencyModelKind::kCantilever:
       return "cantilever";
     case FrequencyModelKind::kLengthAndRadius:
       return "length_and_radius";
   }
   return "?";
+}
+
+double InterpolationModel::Frequency(const Tree& tree, int branch) const {
+  if (static_cast<int>(measured_frequency_hz.size()) != tree.size() || branch < 0 ||
+      branch >= tree.size()) {
+    throw InputError("interpolation", fmt::format("branch {}", branch),
+                     fmt::format("not a branch of the tree the model was fitted on ({} branches)",
+                                 measured_frequency_hz.size()));
+  }
+  const Branch& b = tree.branches[branch];
+  if (kind != FrequencyModelKind::kNearestMeasuredAncestor) {
+    return Frequency(b.base().radius, b.Length());
+  }
+  double f = std::exp(coefficients[0]);
+  for (int a = b.parent; a >= 0; a = tree.branches[a].parent) {
+    if (std::isfinite(measured_frequency_hz[a])) {
+      f = measured_frequency_hz[a];
+      break;
+    }
+  }
+  return clamp ? std::clamp(f, min_frequency_hz, max_frequency_hz) : f;
 }
 
 double InterpolationModel::Frequency(double radius_m, double length_m) const {
@@ -107,6 +141,11 @@ std::string InterpolationModel::Describe() const {
     case FrequencyModelKind::kMedian:
       formula = fmt::format("f = {:.3f} Hz (median)", std::exp(coefficients[0]));
       break;
+    case FrequencyModelKind::kNearestMeasuredAncestor:
+      formula = fmt::format(
+          "f = the nearest measured ancestor's (the median, {:.3f} Hz, where none is measured)",
+          std::exp(coefficients[0]));
+      break;
     case FrequencyModelKind::kCantilever:
       formula = fmt::format("log f = {:.3f} + {:.3f} log(r/L^2)", coefficients[0], coefficients[1]);
       break;
@@ -117,7 +156,7 @@ std::string InterpolationModel::Describe() const {
   }
   return fmt::format("{}, clamped to {:.3f}-{:.3f} Hz, leave-one-out {:.1f}%, {} measured branches",
                      formula, min_frequency_hz, max_frequency_hz,
-                     100 * (std::exp(leave_one_out_log_rms) - 1), measured);
+                     100 * (std::exp(leave_one_out_log_error) - 1), measured);
 }
 
 InterpolationModel FitInterpolationModel(const Tree& tree, const std::vector<BranchSample>& samples,
@@ -149,9 +188,30 @@ InterpolationModel FitInterpolationModel(const Tree& tree, const std::vector<Bra
   model.median_damping = Median(damping);
   for (const auto& level : by_level) model.level_damping.push_back(Median(level));
 
-  // Candidate models the data can carry; the one with the smallest leave-one-out error wins.
+  // Each branch's measured log frequency (the mean when several samples name it): what the
+  // ancestor model reads; `log_f_sum` and `count` let leave-one-out take one sample out.
   const int n = static_cast<int>(samples.size());
-  std::vector<FrequencyModelKind> kinds = {FrequencyModelKind::kMedian};
+  std::vector<double> log_f_sum(tree.size(), 0.0);
+  std::vector<int> count(tree.size(), 0);
+  for (int i = 0; i < n; ++i) {
+    log_f_sum[samples[i].branch] += log_f[i];
+    ++count[samples[i].branch];
+  }
+  auto branch_log_f = [&](int leave) {
+    std::vector<double> out(tree.size(), kNaN);
+    for (int b = 0; b < tree.size(); ++b) {
+      const bool left = leave >= 0 && samples[leave].branch == b;
+      const int c = count[b] - (left ? 1 : 0);
+      if (c > 0) out[b] = (log_f_sum[b] - (left ? log_f[leave] : 0.0)) / c;
+    }
+    return out;
+  };
+  model.measured_frequency_hz = branch_log_f(-1);
+  for (double& f : model.measured_frequency_hz) f = std::exp(f);  // NaN stays NaN
+
+  // Candidate models the data can carry; the one with the smallest leave-one-out error wins.
+  std::vector<FrequencyModelKind> kinds = {FrequencyModelKind::kMedian,
+                                           FrequencyModelKind::kNearestMeasuredAncestor};
   auto features = [&](FrequencyModelKind kind) {
     std::vector<Eigen::VectorXd> x;
     for (const auto& [r, l] : geometry) x.push_back(Features(kind, r, l));
@@ -181,20 +241,24 @@ InterpolationModel FitInterpolationModel(const Tree& tree, const std::vector<Bra
           ys.push_back(log_f[i]);
         }
         double predicted = Predict(Fit(kind, xs, ys), x[leave]);
+        if (kind == FrequencyModelKind::kNearestMeasuredAncestor) {
+          predicted =
+              AncestorLogFrequency(tree, branch_log_f(leave), samples[leave].branch, predicted);
+        }
         if (options.clamp_to_measured) {
           predicted = std::clamp(predicted, std::log(model.min_frequency_hz),
                                  std::log(model.max_frequency_hz));
         }
-        sum += std::pow(predicted - log_f[leave], 2);
+        sum += std::abs(predicted - log_f[leave]);
       }
-      error = std::sqrt(sum / n);
+      error = sum / n;
     }
-    // Ties (and n < 2) keep the simpler model.
+    // Ties (and n < 2) keep the simpler model: the earlier in `kinds`.
     if (kind == FrequencyModelKind::kMedian || error < best_error - 1e-12) {
       best_error = std::isnan(error) ? std::numeric_limits<double>::infinity() : error;
       model.kind = kind;
       model.coefficients = Fit(kind, x, log_f);
-      model.leave_one_out_log_rms = error;
+      model.leave_one_out_log_error = error;
     }
   }
   return model;

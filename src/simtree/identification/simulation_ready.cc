@@ -156,7 +156,7 @@ Tree BuildSimulationReadyTree(const Tree& static_tree, const MaterialsFile& mate
   }
   for (Branch& b : tree.branches) {
     if (measured[b.id]) continue;
-    const double f = report.interpolation.Frequency(b.base().radius, b.Length());
+    const double f = report.interpolation.Frequency(tree, b.id);
     const double z = report.interpolation.Damping(b.level);
     Material material;
     for (int k = 0; k < 3; ++k) {
