@@ -192,20 +192,55 @@ ReconstructionResult ReconstructTree(std::span<const Eigen::Vector3d> points,
   result.times.graph_s = lap.Lap();
 
   // Trunk cylinder on the lowest stretch of the trunk.
-  const double fit_length = std::clamp(options.trunk_fit_share * height, options.trunk_fit_min_m,
-                                       options.trunk_fit_max_m);
+  double fit_length = std::clamp(options.trunk_fit_share * height, options.trunk_fit_min_m,
+                                 options.trunk_fit_max_m);
   std::vector<Eigen::Vector3d> trunk_points;
   std::vector<char> trunk_voxel(working.size(), 0);
-  for (size_t i = 0; i < working.size(); ++i) {
-    if (field.distance[i] <= 1.5 * fit_length && working[i].z() <= z_base + fit_length) {
-      trunk_points.push_back(working[i]);
-      trunk_voxel[i] = 1;
+  auto select_trunk_points = [&](double length) {
+    trunk_points.clear();
+    std::fill(trunk_voxel.begin(), trunk_voxel.end(), 0);
+    for (size_t i = 0; i < working.size(); ++i) {
+      if (field.distance[i] <= 1.5 * length && working[i].z() <= z_base + length) {
+        trunk_points.push_back(working[i]);
+        trunk_voxel[i] = 1;
+      }
     }
-  }
+  };
+  select_trunk_points(fit_length);
   TrunkFitOptions trunk_options = options.trunk;
   trunk_options.inlier_threshold_m = scale.trunk_threshold_m;
   trunk_options.seed = options.seed;
   result.trunk = FitTrunkCylinder(trunk_points, z_base, trunk_options);
+  // A tree that forks below the top of the stretch (a multi-stemmed tree forking at half a
+  // metre) gives MSAC stems to pass a cylinder through: the fit then holds for less than half the
+  // stretch (a stem's cylinder, shortened where it leaves the trunk), or not even at its lowest
+  // slice, so it cannot shorten itself onto the trunk. Fit shorter stretches, halving, and keep
+  // the first the fit holds over (synth magnolia forking at 0.6 m: a 1.01 m "trunk" and no tree
+  // grown).
+  auto misses_the_trunk = [](const TrunkFit& fit, double stretch) {
+    return fit.found &&
+           ((!fit.slices.empty() && !fit.slices.front().agrees) || fit.length_m < 0.5 * stretch);
+  };
+  std::string shortened;  // said in the trunk's note, which the refit below replaces
+  double length = fit_length;
+  while (misses_the_trunk(result.trunk, fit_length) && length > options.trunk_fit_min_m + 1e-9) {
+    length = std::max(0.5 * length, options.trunk_fit_min_m);
+    const std::vector<Eigen::Vector3d> previous_points = trunk_points;
+    const std::vector<char> previous_voxels = trunk_voxel;
+    select_trunk_points(length);
+    TrunkFit shorter = FitTrunkCylinder(trunk_points, z_base, trunk_options);
+    spdlog::debug("trunk on the lowest {:.2f} m: found {}, radius {:.4f}, length {:.2f}; {}",
+                  length, shorter.found, shorter.cylinder.radius, shorter.length_m, shorter.note);
+    if (shorter.found && !misses_the_trunk(shorter, length)) {
+      shortened =
+          fmt::format("fitted on the lowest {:.2f} m (a fork below {:.2f} m)", length, fit_length);
+      result.trunk = std::move(shorter);
+      fit_length = length;
+      break;
+    }
+    trunk_points = previous_points;
+    trunk_voxel = previous_voxels;
+  }
   if (options.trunk_on_full_cloud && result.trunk.found &&
       result.trunk.cylinder.radius < options.trunk_voxels_for_full_cloud * voxel) {
     // A trunk only a few voxels in radius is measured again on the points themselves: the points
@@ -228,6 +263,10 @@ ReconstructionResult ReconstructTree(std::span<const Eigen::Vector3d> points,
         trunk_points = std::move(full);
       }
     }
+  }
+  if (!shortened.empty()) {
+    result.trunk.note =
+        result.trunk.note.empty() ? shortened : shortened + "; " + result.trunk.note;
   }
   if (!result.trunk.found) {
     warn(fmt::format("no trunk cylinder: {}; the base radius is estimated from the lowest points",
