@@ -1,5 +1,7 @@
 #include "simtree/registration/pairwise.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "registration_fixtures.h"
@@ -15,10 +17,22 @@ const test::StandInViews& Views() {
   return views;
 }
 
-PoseError ErrorOf(const PairResult& r, int s, int t) {
+PoseError ErrorOf(const Eigen::Isometry3d& target_from_source, int s, int t) {
   const auto& v = Views();
-  return PairPoseError(r.target_from_source, v.poses[s].world_from_camera,
+  return PairPoseError(target_from_source, v.poses[s].world_from_camera,
                        v.poses[t].world_from_camera, v.tree_points);
+}
+
+PoseError ErrorOf(const PairResult& r, int s, int t) { return ErrorOf(r.target_from_source, s, t); }
+
+// A turn by `angle_deg` about view `t`'s trunk cylinder axis, then a rise of `rise_m` along it
+// (view t's frame): how SAC-IA misses on a tree that looks alike from another side.
+Eigen::Isometry3d AboutTrunk(int t, double angle_deg, double rise_m = 0.0) {
+  const TrunkCylinder& c = *Views().views[t].trunk->cylinder;
+  Eigen::Isometry3d move = Eigen::Isometry3d::Identity();
+  move.linear() = Eigen::AngleAxisd(angle_deg * M_PI / 180, c.axis).toRotationMatrix();
+  move.translation() = c.point - move.linear() * c.point + rise_m * c.axis;
+  return move;
 }
 
 TEST(Pairwise, ViewsAreReadyWithTrunkCylinderAndSkeleton) {
@@ -77,13 +91,9 @@ TEST(Pairwise, AWrongTransformFailsTheChecks) {
   const auto shared = SharedKeyRegions(v.views[1], v.views[0]);
   const auto s = SelectCoarse(v.views[1], &shared->source);
   const auto t = SelectCoarse(v.views[0], &shared->target);
-  const TrunkCylinder& c = *v.views[0].trunk->cylinder;
   for (double angle_deg : {90.0, 40.0, -40.0}) {
     PairResult wrong = right;
-    Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
-    turn.linear() = Eigen::AngleAxisd(angle_deg * M_PI / 180, c.axis).toRotationMatrix();
-    turn.translation() = c.point - turn.linear() * c.point;
-    wrong.target_from_source = turn * right.target_from_source;
+    wrong.target_from_source = AboutTrunk(0, angle_deg) * right.target_from_source;
     wrong.coarse_overlap = CoarseOverlap(s.points, t.points, wrong.target_from_source,
                                          kDefaults.sac_ia.inlier_distance_m);
     CheckPair(v.views[1], v.views[0], kDefaults, wrong);
@@ -101,15 +111,8 @@ TEST(Pairwise, ATurnAboutTheTrunkIsFoundAgain) {
   const auto& v = Views();
   const PairResult right = RegisterPair(v.views[1], v.views[0], kDefaults);
   ASSERT_TRUE(right.ok) << right.status;
-  const TrunkCylinder& c = *v.views[0].trunk->cylinder;
-  Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
-  turn.linear() = Eigen::AngleAxisd(100.0 * M_PI / 180, c.axis).toRotationMatrix();
-  turn.translation() = c.point - turn.linear() * c.point;
-  const Eigen::Isometry3d wrong = turn * right.target_from_source;
-  auto error = [&](const Eigen::Isometry3d& t) {
-    return PairPoseError(t, v.poses[1].world_from_camera, v.poses[0].world_from_camera,
-                         v.tree_points);
-  };
+  const Eigen::Isometry3d wrong = AboutTrunk(0, 100.0) * right.target_from_source;
+  auto error = [](const Eigen::Isometry3d& t) { return ErrorOf(t, 1, 0); };
   const TurnedFineResult found = RefineWithTurns(v.views[1], v.views[0], wrong, kDefaults);
   EXPECT_NE(found.turned_deg, 0.0);
   EXPECT_LT(error(found.fine.icp.target_from_source).rotation_deg, 2.0);
@@ -119,6 +122,27 @@ TEST(Pairwise, ATurnAboutTheTrunkIsFoundAgain) {
   EXPECT_EQ(stuck.turned_deg, 0.0);
   EXPECT_GT(error(stuck.fine.icp.target_from_source).rotation_deg, 20.0);
   EXPECT_GT(found.fine.icp.fitness, stuck.fine.icp.fitness);
+}
+
+TEST(Pairwise, AResultTurnedAndRaisedAlongTheTrunkIsFoundAgainWithShifts) {
+  // A coarse result turned 100 deg about the trunk and 0.4 m up along it (SAC-IA aligning two
+  // different forks): turns alone cannot mend the height; the screen with shifts along the trunk
+  // finds the right pose back.
+  const auto& v = Views();
+  const PairResult right = RegisterPair(v.views[1], v.views[0], kDefaults);
+  ASSERT_TRUE(right.ok) << right.status;
+  const Eigen::Isometry3d wrong = AboutTrunk(0, 100.0, 0.4) * right.target_from_source;
+  auto error = [](const Eigen::Isometry3d& t) { return ErrorOf(t, 1, 0); };
+  const PairOptions& one_way = kDefaults;
+  std::vector<double> shifts;
+  for (int k = -5; k <= 5; ++k) shifts.push_back(0.1 * k);
+  const TurnedFineResult found = RefineWithTurns(v.views[1], v.views[0], wrong, one_way, shifts);
+  EXPECT_LT(error(found.fine.icp.target_from_source).rotation_deg, 2.0);
+  EXPECT_LT(error(found.fine.icp.target_from_source).tree_rms_m, 0.025);
+  EXPECT_NEAR(found.shifted_m, -0.4, 0.1);
+  const TurnedFineResult turns_only = RefineWithTurns(v.views[1], v.views[0], wrong, one_way);
+  EXPECT_GT(error(turns_only.fine.icp.target_from_source).tree_rms_m, 0.05);
+  EXPECT_GT(found.fine.icp.fitness, turns_only.fine.icp.fitness);
 }
 
 TEST(Pairwise, OwnKeyRegionsHoldTheForkWhenOneGroundIsSeenHigh) {
@@ -144,8 +168,7 @@ TEST(Pairwise, OwnKeyRegionsHoldTheForkWhenOneGroundIsSeenHigh) {
   const PairResult r = RegisterPair(high, v.views[0], own);
   EXPECT_TRUE(r.ok) << r.status;
   EXPECT_TRUE(r.own_key_regions);
-  const PoseError e = PairPoseError(r.target_from_source, v.poses[1].world_from_camera,
-                                    v.poses[0].world_from_camera, v.tree_points);
+  const PoseError e = ErrorOf(r, 1, 0);
   EXPECT_LT(e.rotation_deg, 2.0);
   EXPECT_LT(e.tree_rms_m, 0.025);
 }

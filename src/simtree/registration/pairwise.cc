@@ -7,6 +7,7 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -74,46 +75,89 @@ Eigen::Isometry3d TurnAbout(const Eigen::Vector3d& axis, const Eigen::Vector3d& 
   return turn;
 }
 
-// The turns of `result` about the target's trunk axis worth refining: every `turn_step_deg`
-// around the circle, each settled by a short ICP on a sample of the source view (the fine stage's
-// distances, a few iterations each) and scored by its fitness at the last distance, as the full
-// refinement is; best first, one per peak (no two within a step and a half of each other or of
-// the result). A bare overlap count does not tell the turns apart: it needs a distance as wide
-// as half a step moves the crown (~13 cm), at which every turn scores alike.
-std::vector<double> ScreenTurns(const RegistrationView& source, const RegistrationView& target,
-                                const Eigen::Isometry3d& result, const PairOptions& options) {
-  std::vector<double> chosen;
+// A turn about the target's trunk axis and a shift along it, applied after a result.
+struct TrunkMove {
+  double angle_deg = 0.0;
+  double shift_m = 0.0;
+};
+
+Eigen::Isometry3d MoveAboutTrunk(const RegistrationView& target, const TrunkMove& move) {
+  const Eigen::Vector3d axis = TrunkAxis(target).normalized();
+  Eigen::Isometry3d t = TurnAbout(axis, target.trunk->base, move.angle_deg);
+  t.translation() += move.shift_m * axis;
+  return t;
+}
+
+// The moves of `result` about the target's trunk axis worth refining: turns every
+// `turn_step_deg` around the circle, each at every shift of `shifts_m`, settled by a short ICP on
+// a sample of the source view (the fine stage's distances, a few iterations each) and scored by
+// its fitness at the last distance, as the full refinement is; best first, one per peak (no two
+// within a step and a half of each other or of the result, in turn and in shift). A bare
+// overlap count does not tell the turns apart: it needs a distance as wide as half a step moves
+// the crown (~13 cm), at which every turn scores alike.
+std::vector<TrunkMove> ScreenMoves(const RegistrationView& source, const RegistrationView& target,
+                                   const Eigen::Isometry3d& result,
+                                   const std::vector<double>& shifts_m, int wanted,
+                                   const PairOptions& options) {
+  std::vector<TrunkMove> chosen;
   const double step = options.turn_step_deg;
-  if (options.turned_refinements <= 0 || !(step > 0) || !target.trunk || !source.cloud ||
-      source.cloud->points_.empty()) {
+  if (wanted <= 0 || !(step > 0) || !target.trunk || !source.cloud ||
+      source.cloud->points_.empty() || shifts_m.empty()) {
     return chosen;
   }
-  const Eigen::Vector3d axis = TrunkAxis(target).normalized();
-  const Eigen::Vector3d& pivot = target.trunk->base;
   GatedIcpOptions icp = FineIcpOptions(source, target, options);
   icp.iterations_per_stage = options.turn_screen_iterations;
   icp.max_source_points = options.turn_screen_points;
-  std::vector<std::pair<double, double>> scored;  // (fitness, angle)
-  for (double angle = step; angle < 360.0 - 0.5 * step; angle += step) {
-    const Eigen::Isometry3d turned = TurnAbout(axis, pivot, angle) * result;
-    scored.emplace_back(
-        GatedPointToPlaneIcp(*source.cloud, *target.cloud, *target.cloud_tree, turned, icp,
-                             source.planarity.get(), target.planarity.get())
-            .fitness,
-        angle);
+  // The shifts' spacing: how close two shifts may be and still be one peak.
+  double shift_step = std::numeric_limits<double>::infinity();
+  for (size_t i = 1; i < shifts_m.size(); ++i) {
+    shift_step = std::min(shift_step, std::abs(shifts_m[i] - shifts_m[i - 1]));
   }
-  std::sort(scored.begin(), scored.end(), std::greater<>());
-  auto apart = [&](double a, double b) {
-    const double d = std::fmod(std::abs(a - b), 360.0);
-    return std::min(d, 360.0 - d) > 1.5 * step;
+  std::vector<std::pair<double, TrunkMove>> scored;  // (fitness, move)
+  for (double shift : shifts_m) {
+    for (double angle = 0.0; angle < 360.0 - 0.5 * step; angle += step) {
+      if (angle == 0.0 && shift == 0.0) continue;  // the result itself
+      const TrunkMove move{angle, shift};
+      scored.emplace_back(GatedPointToPlaneIcp(*source.cloud, *target.cloud, *target.cloud_tree,
+                                               MoveAboutTrunk(target, move) * result, icp,
+                                               source.planarity.get(), target.planarity.get())
+                              .fitness,
+                          move);
+    }
+  }
+  // Best first; ties by the larger turn, then shift (a fixed order).
+  std::sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) {
+    return std::tuple(a.first, a.second.angle_deg, a.second.shift_m) >
+           std::tuple(b.first, b.second.angle_deg, b.second.shift_m);
+  });
+  auto apart = [&](const TrunkMove& a, const TrunkMove& b) {
+    const double d = std::fmod(std::abs(a.angle_deg - b.angle_deg), 360.0);
+    return std::min(d, 360.0 - d) > 1.5 * step ||
+           std::abs(a.shift_m - b.shift_m) > 1.5 * shift_step;
   };
-  for (const auto& [share, angle] : scored) {
-    if (static_cast<int>(chosen.size()) >= options.turned_refinements) break;
-    bool far = apart(angle, 0.0);
-    for (double c : chosen) far = far && apart(angle, c);
-    if (far) chosen.push_back(angle);
+  for (const auto& [share, move] : scored) {
+    if (static_cast<int>(chosen.size()) >= wanted) break;
+    bool far = apart(move, TrunkMove{});
+    for (const TrunkMove& c : chosen) far = far && apart(move, c);
+    if (far) chosen.push_back(move);
   }
   return chosen;
+}
+
+// The shifts along the trunk the turn screen tries: none, or every screen_shift_step_factor
+// point spacings up to screen_shift_share of the key region's radius either way.
+std::vector<double> ScreenShifts(const RegistrationView& source, const RegistrationView& target,
+                                 double key_radius_m, const PairOptions& options) {
+  std::vector<double> shifts = {0.0};
+  const double step = options.screen_shift_step_factor * Spacing(source, target);
+  const double reach = options.screen_shift_share * key_radius_m;
+  if (!(step > 0) || !(reach >= step)) return shifts;
+  for (int k = 1; k * step <= reach + 1e-9; ++k) {
+    shifts.push_back(k * step);
+    shifts.push_back(-k * step);
+  }
+  std::sort(shifts.begin(), shifts.end());
+  return shifts;
 }
 
 }  // namespace
@@ -322,18 +366,19 @@ FineResult RefinePair(const RegistrationView& source, const RegistrationView& ta
 }
 
 TurnedFineResult RefineWithTurns(const RegistrationView& source, const RegistrationView& target,
-                                 const Eigen::Isometry3d& initial, const PairOptions& options) {
+                                 const Eigen::Isometry3d& initial, const PairOptions& options,
+                                 const std::vector<double>& shifts_m, int refinements) {
   TurnedFineResult result;
   result.fine = RefinePair(source, target, initial, options);
   if (!target.trunk) return result;
-  const Eigen::Vector3d axis = TrunkAxis(target).normalized();
   const Eigen::Isometry3d found = result.fine.icp.target_from_source;
-  for (double angle_deg : ScreenTurns(source, target, found, options)) {
-    const Eigen::Isometry3d turn = TurnAbout(axis, target.trunk->base, angle_deg);
-    FineResult turned = RefinePair(source, target, turn * found, options);
-    if (turned.icp.fitness > result.fine.icp.fitness) {
-      result.fine = std::move(turned);
-      result.turned_deg = angle_deg;
+  const int wanted = refinements >= 0 ? refinements : options.turned_refinements;
+  for (const TrunkMove& move : ScreenMoves(source, target, found, shifts_m, wanted, options)) {
+    FineResult moved = RefinePair(source, target, MoveAboutTrunk(target, move) * found, options);
+    if (moved.icp.fitness > result.fine.icp.fitness) {
+      result.fine = std::move(moved);
+      result.turned_deg = move.angle_deg;
+      result.shifted_m = move.shift_m;
     }
   }
   return result;
@@ -410,10 +455,14 @@ PairResult RegisterPairOnce(const RegistrationView& source, const RegistrationVi
   }
   result.target_from_source = result.coarse.target_from_source;
   if (options.run_icp) {
-    const TurnedFineResult turned =
-        RefineWithTurns(source, target, result.target_from_source, options);
+    const TurnedFineResult turned = RefineWithTurns(
+        source, target, result.target_from_source, options,
+        ScreenShifts(source, target, shared ? shared->source.radius_m : 0.0, options),
+        options.screen_shift_share > 0 ? options.shifted_refinements : -1);
     const FineResult& fine = turned.fine;
     result.turned_deg = turned.turned_deg;
+    result.shifted_m = turned.shifted_m;
+    result.medial_shift_m = fine.medial_shift.norm();
     result.fine = fine.icp;
     result.trunk_constraint = fine.trunk_constraint;
     result.ground_constraint = fine.ground_constraint;
@@ -430,9 +479,11 @@ PairResult RegisterPairOnce(const RegistrationView& source, const RegistrationVi
   return result;
 }
 
-// Keeps whichever of `result` and `retried` overlaps more, charged with the time of both.
-void KeepBetterOverlap(PairResult retried, PairResult* result) {
+// Keeps whichever of `result` and `retried` (found by `attempt`) overlaps more, charged with the
+// time of both.
+void KeepBetterOverlap(PairResult retried, const char* attempt, PairResult* result) {
   retried.seconds += result->seconds;
+  retried.attempt = attempt;
   if (retried.fine.fitness > result->fine.fitness) {
     *result = std::move(retried);
   } else {
@@ -452,7 +503,18 @@ PairResult RegisterPair(const RegistrationView& source, const RegistrationView& 
       result.fine.fitness < options.min_fitness) {
     PairOptions other = options;
     other.own_key_regions = !options.own_key_regions;
-    KeepBetterOverlap(RegisterPairOnce(source, target, other), &result);
+    KeepBetterOverlap(RegisterPairOnce(source, target, other), "other key regions", &result);
+  }
+  // Both forks may be other branchings (a view that sees one arm of the first fork hidden behind
+  // the other finds the next one up): SAC-IA then aligns the two forks, the source lands a
+  // fork's spacing too high or low, and no turn mends it. The screen is run once more over
+  // shifts along the trunk too, with the key regions that overlapped best.
+  if (options.retry_with_shifts && options.screen_shift_share <= 0 && options.run_icp &&
+      result.fine.fitness < options.min_fitness) {
+    PairOptions shifted = options;
+    shifted.screen_shift_share = options.retry_shift_share;
+    shifted.own_key_regions = result.own_key_regions;
+    KeepBetterOverlap(RegisterPairOnce(source, target, shifted), "shifts", &result);
   }
   // A trunk found wrong in one view (a stem beside it, a fork taken for the trunk) misleads the
   // up and centre priors and the snap in every turn; when the result overlaps too little to be
@@ -462,7 +524,7 @@ PairResult RegisterPair(const RegistrationView& source, const RegistrationView& 
     PairOptions plain = options;
     plain.up_prior = plain.center_prior = plain.snap_to_priors = false;
     plain.own_key_regions = result.own_key_regions;
-    KeepBetterOverlap(RegisterPairOnce(source, target, plain), &result);
+    KeepBetterOverlap(RegisterPairOnce(source, target, plain), "without priors", &result);
     result.retried_without_priors = true;
   }
   return result;

@@ -60,6 +60,19 @@ struct PairOptions {
   // below the fork the other view's region holds, while both views' own forks agree within
   // ~0.1 m (synthetic acer_rubrum, seeds 5, 8, 10; docs/registration.md).
   bool retry_other_key_regions = true;
+  // The turn screen also shifts the result along the target's trunk by every
+  // `screen_shift_step_factor` point spacings up to `screen_shift_share` of the key region's
+  // radius either way, refining the `shifted_refinements` best moves; 0: turns only.
+  double screen_shift_share = 0.0;
+  double screen_shift_step_factor = 10.0;
+  int shifted_refinements = 4;
+  // A result whose view overlap is still below min_fitness after the other key regions is
+  // registered once more with the shifts screened (at `retry_shift_share`), before the retry
+  // without priors. The views' forks may both be other branchings than the tree's first (a
+  // view seeing one arm hidden behind the other finds the next fork up, 0.3-0.4 m higher on
+  // synthetic acer_rubrum seed 5); SAC-IA aligns them and no turn mends the height.
+  bool retry_with_shifts = true;
+  double retry_shift_share = 0.6;
   // After ICP, shift the source so the views' medial points (branch axes) meet (AlignMedialAxes),
   // at these distances in point spacings; empty: not at all.
   std::vector<double> medial_distance_factors = {6.0, 3.0};
@@ -126,11 +139,16 @@ struct PairResult {
   double coarse_overlap = 0.0;          // skeleton overlap after registration
   double view_overlap = 0.0;            // whole-view overlap after registration (min_fitness)
   double turned_deg = 0.0;              // the turned alternative kept (0: the result as found)
+  double shifted_m = 0.0;               // and its shift along the target's trunk
+  double medial_shift_m = 0.0;          // the fine stage's medial shift (AlignMedialAxes)
   bool retried_without_priors = false;  // the result of the retry without priors (kept or not)
-  bool own_key_regions = false;         // the result kept was found with the views' own regions
-  bool trunk_constraint = false;        // the trunk axes took part in fine registration
-  bool ground_constraint = false;       // the ground planes took part in fine registration
-  double seconds = 0.0;                 // coarse + fine (view preparation not included)
+  // Which of RegisterPair's attempts found the result kept: "first", "other key regions",
+  // "shifts" or "without priors".
+  std::string attempt = "first";
+  bool own_key_regions = false;    // the result kept was found with the views' own regions
+  bool trunk_constraint = false;   // the trunk axes took part in fine registration
+  bool ground_constraint = false;  // the ground planes took part in fine registration
+  double seconds = 0.0;            // coarse + fine (view preparation not included)
 };
 
 // The fine stage alone from `initial` (target_from_source), as RegisterPair runs it after the
@@ -144,18 +162,23 @@ struct FineResult {
 FineResult RefinePair(const RegistrationView& source, const RegistrationView& target,
                       const Eigen::Isometry3d& initial, const PairOptions& options = {});
 
-// RefinePair from `initial`, and from `initial` turned about the target's trunk axis by the
-// turns a short-ICP screen finds best (turn_step_deg, turned_refinements); the result whose
-// view overlaps most (IcpResult::fitness) is kept.
+// RefinePair from `initial`, and from `initial` turned about the target's trunk axis (every
+// turn_step_deg) and shifted along it (by each of `shifts_m`) by the moves a short-ICP screen
+// finds best, `refinements` of them (-1: turned_refinements); the result whose view overlaps
+// most (IcpResult::fitness) is kept.
 struct TurnedFineResult {
   FineResult fine;
   double turned_deg = 0.0;  // the turn kept (0: the result from `initial`)
+  double shifted_m = 0.0;   // the shift along the trunk kept
 };
 TurnedFineResult RefineWithTurns(const RegistrationView& source, const RegistrationView& target,
-                                 const Eigen::Isometry3d& initial, const PairOptions& options = {});
+                                 const Eigen::Isometry3d& initial, const PairOptions& options = {},
+                                 const std::vector<double>& shifts_m = {0.0}, int refinements = -1);
 
-// Coarse, fine with turns, checks; when the result overlaps too little, once more without the
-// priors (retry_without_priors), keeping the better overlap.
+// Coarse, fine with turns, checks. While the result overlaps too little (min_fitness), once
+// more with the other key regions (retry_other_key_regions), with shifts along the trunk
+// screened too (retry_with_shifts), and without the priors (retry_without_priors), in that
+// order, keeping the best overlap (PairResult::attempt says which).
 PairResult RegisterPair(const RegistrationView& source, const RegistrationView& target,
                         const PairOptions& options = {});
 
