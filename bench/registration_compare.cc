@@ -107,6 +107,11 @@ struct Outcome {
   bool accepted = true;  // for ours: passed its own checks
   // The tree centroid's displacement in the target camera's frame (x right, y down, z forward).
   Eigen::Vector3d centroid_shift = Eigen::Vector3d::Zero();
+  // The rotation error split in the world: about the vertical (a turn about the trunk) and across
+  // it (a tilt), degrees.
+  double yaw_error_deg = 0, tilt_error_deg = 0;
+  // The rotation error as a vector (degrees) in the target camera's frame.
+  Eigen::Vector3d rotation_error_target = Eigen::Vector3d::Zero();
   const PairResult* checks = nullptr;  // for ours: what its checks measured (while `pairs` lives)
 };
 
@@ -166,7 +171,8 @@ int main(int argc, char** argv) {
   std::vector<std::string> captures;
   fs::path cache = fs::temp_directory_path() / "simtree_registration_bench";
   bool skip_baselines = false, skip_table1 = false, ablations = false, fine_study = false;
-  bool views_only = false;
+  bool views_only = false, skip_paper = false;
+  std::vector<std::string> only_pairs;
   app.add_option("--synth-seeds", synth_seeds,
                  "Synthetic captures to make (seeds from --first-seed)");
   app.add_option("--first-seed", first_seed, "First seed")->capture_default_str();
@@ -184,6 +190,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--skip-baselines", skip_baselines, "Ours only");
   app.add_flag("--skip-table1", skip_table1, "No Table I");
+  app.add_flag("--skip-paper", skip_paper, "No \"ours without priors\" row");
+  app.add_option("--pairs", only_pairs,
+                 "Only these pairs, as source:target view indices (e.g. 7:1), in every scene");
   app.add_flag("--ablations", ablations, "Ours with each prior left out in turn");
   app.add_flag("--fine-study", fine_study,
                "Fine stages (ours, ours without priors, Open3D's ICP) from the same starts");
@@ -244,6 +253,16 @@ int main(int argc, char** argv) {
     const Eigen::Isometry3d target_from_world = scene.poses[t].world_from_camera.inverse();
     o.centroid_shift = transform * (scene.poses[s].world_from_camera.inverse() * centroid) -
                        target_from_world * centroid;
+    const Eigen::AngleAxisd world_error(
+        (scene.poses[t].world_from_camera * transform * scene.poses[s].world_from_camera.inverse())
+            .linear());
+    const Eigen::Vector3d error_vector =
+        world_error.angle() * world_error.axis() * 180.0 / std::numbers::pi;
+    o.yaw_error_deg = error_vector.z();
+    o.tilt_error_deg = error_vector.head<2>().norm();
+    const Eigen::AngleAxisd target_error(
+        (transform * (target_from_world * scene.poses[s].world_from_camera).inverse()).linear());
+    o.rotation_error_target = target_error.angle() * target_error.axis() * 180.0 / std::numbers::pi;
     outcomes.push_back(o);
   };
 
@@ -305,20 +324,27 @@ int main(int argc, char** argv) {
     }
     std::vector<std::pair<size_t, size_t>> pairs;
     for (size_t s = 0; s < n; ++s) {
-      for (size_t t = s + 1; t < n; ++t) pairs.emplace_back(t, s);
+      for (size_t t = s + 1; t < n; ++t) {
+        const std::string name = fmt::format("{}:{}", t, s);
+        if (only_pairs.empty() ||
+            std::find(only_pairs.begin(), only_pairs.end(), name) != only_pairs.end()) {
+          pairs.emplace_back(t, s);
+        }
+      }
     }
 
     // Ours, and ours without the priors (the paper's method as written, same code otherwise).
     PairOptions paper_options;
     paper_options.up_prior = paper_options.center_prior = paper_options.snap_to_priors = false;
     paper_options.trunk_axis_weight = paper_options.ground_weight = 0.0;
-    paper_options.retry_other_key_regions = false;
+    paper_options.retry_other_key_regions = paper_options.retry_with_shifts = false;
     for (const auto& [s, t] : pairs) {
       const PairResult& r =
           ours_results.emplace_back(RegisterPair(ours[s], ours[t], default_options));
       record(scene, s, t, "ours", r.target_from_source,
              prep_seconds[s] + prep_seconds[t] + r.seconds, ours[s], ours[t], r.ok);
       outcomes.back().checks = &r;
+      if (skip_paper) continue;
       const PairResult p = RegisterPair(ours[s], ours[t], paper_options);
       record(scene, s, t, "ours without priors", p.target_from_source,
              prep_seconds[s] + prep_seconds[t] + p.seconds, ours[s], ours[t], p.ok);
@@ -509,6 +535,11 @@ int main(int argc, char** argv) {
            {"centroid_error_mm", 1e3 * o.error.centroid_m},
            {"centroid_shift_target_mm",
             {1e3 * o.centroid_shift.x(), 1e3 * o.centroid_shift.y(), 1e3 * o.centroid_shift.z()}},
+           {"yaw_error_deg", o.yaw_error_deg},
+           {"tilt_error_deg", o.tilt_error_deg},
+           {"rotation_error_target_deg",
+            {o.rotation_error_target.x(), o.rotation_error_target.y(),
+             o.rotation_error_target.z()}},
            {"right", o.error.Within()},
            {"accepted", o.accepted}});
       if (o.checks) {
@@ -521,6 +552,10 @@ int main(int argc, char** argv) {
         doc.back()["turned_deg"] = o.checks->turned_deg;
         doc.back()["own_key_regions"] = o.checks->own_key_regions;
         doc.back()["retried_without_priors"] = o.checks->retried_without_priors;
+        doc.back()["attempt"] = o.checks->attempt;
+        doc.back()["view_overlap"] = o.checks->view_overlap;
+        doc.back()["shifted_mm"] = 1e3 * o.checks->shifted_m;
+        doc.back()["medial_shift_mm"] = 1e3 * o.checks->medial_shift_m;
       }
     }
     std::ofstream(json_path) << doc.dump(1) << "\n";
