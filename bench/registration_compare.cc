@@ -384,6 +384,12 @@ int main(int argc, char** argv) {
         change(o);
         fine_variants.emplace_back(" without priors, " + name, o);
       };
+      auto add_ours = [&](const std::string& name, auto change) {
+        PairOptions o = default_options;
+        change(o);
+        fine_variants.emplace_back(", " + name, o);
+      };
+      add_ours("one way", [](PairOptions& o) { o.symmetric_fine = false; });
       add_variant("45-deg normal gate", [](PairOptions& o) { o.icp.max_normal_angle_deg = 45; });
       add_variant("no medial shift", [](PairOptions& o) { o.medial_distance_factors.clear(); });
       add_variant("trunk constraint", [](PairOptions& o) { o.trunk_axis_weight = 1.0; });
@@ -408,7 +414,10 @@ int main(int argc, char** argv) {
           auto begin = Clock::now();
           for (const auto& [variant, variant_options] : fine_variants) {
             begin = Clock::now();
-            const FineResult fine = RefinePair(ours[s], ours[t], start, variant_options);
+            FineResult fine = RefinePair(ours[s], ours[t], start, variant_options);
+            if (variant_options.symmetric_fine) {
+              fine = AverageWithReverse(ours[s], ours[t], fine, variant_options);
+            }
             record(scene, s, t, "ours' fine" + variant + from, fine.icp.target_from_source,
                    Since(begin), ours[s], ours[t], true);
           }
@@ -556,6 +565,7 @@ int main(int argc, char** argv) {
         doc.back()["view_overlap"] = o.checks->view_overlap;
         doc.back()["shifted_mm"] = 1e3 * o.checks->shifted_m;
         doc.back()["medial_shift_mm"] = 1e3 * o.checks->medial_shift_m;
+        doc.back()["reverse_gap_mm"] = 1e3 * o.checks->reverse_gap_m;
       }
     }
     std::ofstream(json_path) << doc.dump(1) << "\n";

@@ -133,7 +133,9 @@ TEST(Pairwise, AResultTurnedAndRaisedAlongTheTrunkIsFoundAgainWithShifts) {
   ASSERT_TRUE(right.ok) << right.status;
   const Eigen::Isometry3d wrong = AboutTrunk(0, 100.0, 0.4) * right.target_from_source;
   auto error = [](const Eigen::Isometry3d& t) { return ErrorOf(t, 1, 0); };
-  const PairOptions& one_way = kDefaults;
+  // One way only: the reverse direction (symmetric_fine) may find the way back by itself.
+  PairOptions one_way = kDefaults;
+  one_way.symmetric_fine = false;
   std::vector<double> shifts;
   for (int k = -5; k <= 5; ++k) shifts.push_back(0.1 * k);
   const TurnedFineResult found = RefineWithTurns(v.views[1], v.views[0], wrong, one_way, shifts);
@@ -143,6 +145,57 @@ TEST(Pairwise, AResultTurnedAndRaisedAlongTheTrunkIsFoundAgainWithShifts) {
   const TurnedFineResult turns_only = RefineWithTurns(v.views[1], v.views[0], wrong, one_way);
   EXPECT_GT(error(turns_only.fine.icp.target_from_source).tree_rms_m, 0.05);
   EXPECT_GT(found.fine.icp.fitness, turns_only.fine.icp.fitness);
+}
+
+TEST(Pairwise, TheSymmetricFineStageLiesHalfwayBetweenBothDirections) {
+  // The 144-deg pair from the true pose: the fine stage one way, the other way, and their mean.
+  const auto& v = Views();
+  const int s = 4, t = 0;
+  const Eigen::Isometry3d truth =
+      v.poses[t].world_from_camera.inverse() * v.poses[s].world_from_camera;
+  const FineResult forward = RefinePair(v.views[s], v.views[t], truth, kDefaults);
+  const Eigen::Isometry3d f = forward.icp.target_from_source;
+  const Eigen::Isometry3d b =
+      RefinePair(v.views[t], v.views[s], f.inverse(), kDefaults).icp.target_from_source.inverse();
+  const FineResult mean = AverageWithReverse(v.views[s], v.views[t], forward, kDefaults);
+  const Eigen::Isometry3d m = mean.icp.target_from_source;
+  auto angle = [](const Eigen::Isometry3d& a, const Eigen::Isometry3d& c) {
+    return Eigen::AngleAxisd(a.linear() * c.linear().transpose()).angle();
+  };
+  EXPECT_NEAR(angle(m, f), 0.5 * angle(f, b), 1e-9);
+  EXPECT_NEAR(angle(m, b), 0.5 * angle(f, b), 1e-9);
+  const Eigen::Vector3d centre = v.views[s].cloud->GetCenter();
+  EXPECT_LT((m * centre - 0.5 * (f * centre + b * centre)).norm(), 1e-9);
+  EXPECT_GT(mean.icp.fitness, 0.3);
+  const PoseError e = ErrorOf(m, s, t);
+  EXPECT_LT(e.rotation_deg, 2.0);
+  EXPECT_LT(e.tree_rms_m, 0.025);
+}
+
+TEST(Pairwise, TwoDirectionsInDifferentPlacesAreNotAveraged) {
+  // The forward fine stage stuck 100 deg off about the trunk: the reverse settles elsewhere, and
+  // the result is whichever overlaps more, never a pose halfway between two basins.
+  const auto& v = Views();
+  const int s = 1, t = 0;
+  const Eigen::Isometry3d truth =
+      v.poses[t].world_from_camera.inverse() * v.poses[s].world_from_camera;
+  const FineResult stuck =
+      RefinePair(v.views[s], v.views[t], AboutTrunk(t, 100.0) * truth, kDefaults);
+  const FineResult result = AverageWithReverse(v.views[s], v.views[t], stuck, kDefaults);
+  const double spacing = std::max(v.views[s].spacing_m, v.views[t].spacing_m);
+  ASSERT_TRUE(std::isfinite(result.reverse_gap_m));
+  EXPECT_GT(result.reverse_gap_m, kDefaults.max_reverse_disagreement_factor * spacing);
+  const double last = kDefaults.icp_distance_factors.back() * spacing;
+  const double stuck_overlap =
+      MeasureOverlap(*v.views[s].cloud, *v.views[t].cloud, *v.views[t].cloud_tree,
+                     stuck.icp.target_from_source, last)
+          .share;
+  EXPECT_GE(result.icp.fitness, stuck_overlap);
+  // Not averaged: the forward result as it was, or one refined from the reverse.
+  const PoseError e = ErrorOf(result.icp.target_from_source, s, t);
+  const PoseError e_stuck = ErrorOf(stuck.icp.target_from_source, s, t);
+  EXPECT_TRUE(e.rotation_deg < 2.0 || std::abs(e.rotation_deg - e_stuck.rotation_deg) < 1e-9)
+      << e.rotation_deg << " vs stuck " << e_stuck.rotation_deg;
 }
 
 TEST(Pairwise, OwnKeyRegionsHoldTheForkWhenOneGroundIsSeenHigh) {

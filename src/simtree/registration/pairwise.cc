@@ -365,6 +365,61 @@ FineResult RefinePair(const RegistrationView& source, const RegistrationView& ta
   return result;
 }
 
+namespace {
+
+FineResult AverageWithReverseOnce(const RegistrationView& source, const RegistrationView& target,
+                                  const FineResult& forward, const PairOptions& options,
+                                  bool may_restart) {
+  if (!source.cloud || !target.cloud || !source.cloud_tree || !target.cloud_tree ||
+      source.cloud->points_.empty()) {
+    return forward;
+  }
+  const Eigen::Isometry3d f = forward.icp.target_from_source;
+  const Eigen::Isometry3d b =
+      RefinePair(target, source, f.inverse(), options).icp.target_from_source.inverse();
+  const double last = FineIcpOptions(source, target, options).max_distances_m.back();
+  auto measured = [&](const Eigen::Isometry3d& t) {
+    FineResult r = forward;
+    r.icp.target_from_source = t;
+    const Overlap overlap =
+        MeasureOverlap(*source.cloud, *target.cloud, *target.cloud_tree, t, last);
+    r.icp.fitness = overlap.share;
+    r.icp.rmse_m = overlap.rmse_m;
+    r.icp.correspondences = overlap.matched;
+    return r;
+  };
+  // Two directions that settled in different places (one of them in a wrong basin) are not
+  // averaged: the one whose view overlaps more is kept, and when that is the reverse, the
+  // forward direction starts again from it.
+  double squared = 0.0;
+  for (const Eigen::Vector3d& p : source.cloud->points_) squared += (f * p - b * p).squaredNorm();
+  const double apart = std::sqrt(squared / static_cast<double>(source.cloud->points_.size()));
+  if (apart > options.max_reverse_disagreement_factor * Spacing(source, target)) {
+    FineResult one = measured(f), other = measured(b);
+    one.reverse_gap_m = other.reverse_gap_m = apart;
+    if (other.icp.fitness <= one.icp.fitness) return one;
+    if (!may_restart) return other;
+    FineResult again = RefinePair(source, target, b, options);
+    return AverageWithReverseOnce(source, target, again, options, false);
+  }
+  const Eigen::Quaterniond qf(f.linear()), qb(b.linear());
+  Eigen::Isometry3d mean = Eigen::Isometry3d::Identity();
+  mean.linear() = qf.slerp(0.5, qb).toRotationMatrix();
+  // Halfway between where the two put the source's points.
+  const Eigen::Vector3d centre = source.cloud->GetCenter();
+  mean.translation() = 0.5 * (f * centre + b * centre) - mean.linear() * centre;
+  FineResult result = measured(mean);
+  result.reverse_gap_m = apart;
+  return result;
+}
+
+}  // namespace
+
+FineResult AverageWithReverse(const RegistrationView& source, const RegistrationView& target,
+                              const FineResult& forward, const PairOptions& options) {
+  return AverageWithReverseOnce(source, target, forward, options, true);
+}
+
 TurnedFineResult RefineWithTurns(const RegistrationView& source, const RegistrationView& target,
                                  const Eigen::Isometry3d& initial, const PairOptions& options,
                                  const std::vector<double>& shifts_m, int refinements) {
@@ -381,6 +436,8 @@ TurnedFineResult RefineWithTurns(const RegistrationView& source, const Registrat
       result.shifted_m = move.shift_m;
     }
   }
+  if (options.symmetric_fine)
+    result.fine = AverageWithReverse(source, target, result.fine, options);
   return result;
 }
 
@@ -463,6 +520,7 @@ PairResult RegisterPairOnce(const RegistrationView& source, const RegistrationVi
     result.turned_deg = turned.turned_deg;
     result.shifted_m = turned.shifted_m;
     result.medial_shift_m = fine.medial_shift.norm();
+    result.reverse_gap_m = fine.reverse_gap_m;
     result.fine = fine.icp;
     result.trunk_constraint = fine.trunk_constraint;
     result.ground_constraint = fine.ground_constraint;
