@@ -198,6 +198,24 @@ TEST(Pairwise, TwoDirectionsInDifferentPlacesAreNotAveraged) {
       << e.rotation_deg << " vs stuck " << e_stuck.rotation_deg;
 }
 
+TEST(Pairwise, AResultFoundWithoutPriorsMustOverlapMore) {
+  // A centre prior nothing can meet leaves the attempts with priors without a coarse result, so
+  // the retry without priors finds the result kept, and its own overlap bar applies.
+  const auto& v = Views();
+  PairOptions options = kDefaults;
+  options.max_center_offset_share = 1e-9;
+  options.min_fitness_without_priors = 0.0;
+  const PairResult r = RegisterPair(v.views[1], v.views[0], options);
+  EXPECT_EQ(r.attempt, "without priors");
+  EXPECT_TRUE(r.ok) << r.status;
+  EXPECT_LT(ErrorOf(r, 1, 0).rotation_deg, 2.0);
+  options.min_fitness_without_priors = 0.99;
+  const PairResult strict = RegisterPair(v.views[1], v.views[0], options);
+  EXPECT_EQ(strict.attempt, "without priors");
+  EXPECT_FALSE(strict.ok);
+  EXPECT_NE(strict.status.find("at least 99%"), std::string::npos) << strict.status;
+}
+
 TEST(Pairwise, OwnKeyRegionsHoldTheForkWhenOneGroundIsSeenHigh) {
   // One view fits its ground 0.5 m higher (grass, another patch of an uneven ground): the shared
   // height puts the other view's key region on the bare trunk below the fork, while each view's

@@ -582,6 +582,7 @@ PairResult RegisterPair(const RegistrationView& source, const RegistrationView& 
     PairOptions plain = options;
     plain.up_prior = plain.center_prior = plain.snap_to_priors = false;
     plain.own_key_regions = result.own_key_regions;
+    plain.min_fitness = std::max(options.min_fitness, options.min_fitness_without_priors);
     KeepBetterOverlap(RegisterPairOnce(source, target, plain), "without priors", &result);
     result.retried_without_priors = true;
   }
