@@ -104,6 +104,37 @@ TEST(RegisterCli, BadViewsAreFlaggedNotMerged) {
   EXPECT_THAT(test::ReadText(out / "pairs.md"), HasSubstr("view_01 left out"));
 }
 
+TEST(RegisterCli, AnAllNanCloudFileIsFlaggedByNameAndTheOthersRegister) {
+  // A folder of point clouds (the cleaned views of the quick capture) in which view_02 holds
+  // only NaN coordinates: that view is left out with its file named, the others go on (here two
+  // of the three register: the cleaned clouds are thinned once more when read as clouds).
+  const fs::path tmp = test::TempDir();
+  const fs::path clean = tmp / "clean";
+  auto r = test::RunCli("-q preprocess \"" + QuickCapture().string() + "\" --out \"" +
+                        clean.string() + "\"");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const fs::path clouds = tmp / "clouds";
+  fs::create_directories(clouds);
+  for (const char* view : {"view_00", "view_01", "view_03"}) {
+    fs::copy_file(clean / (std::string(view) + ".ply"), clouds / (std::string(view) + ".ply"));
+  }
+  std::string nan_lines;
+  for (int i = 0; i < 200; ++i) nan_lines += "nan nan nan\n";
+  test::WriteText(clouds / "view_02.xyz", nan_lines);
+
+  const fs::path out = tmp / "reg";
+  r = test::RunCli("register \"" + clouds.string() + "\" --out \"" + out.string() + "\"");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("view_02.xyz: every point has NaN or infinite coordinates"));
+  EXPECT_THAT(r.output, Not(HasSubstr("internal error")));
+  ASSERT_TRUE(fs::exists(out / "poses.json")) << r.output;
+  const auto poses = ReadJson(out / "poses.json");
+  ASSERT_EQ(poses["views"].size(), 4u);
+  EXPECT_EQ(poses["views"][2]["registered"], false);
+  EXPECT_GE(poses["registered"], 2) << r.output;
+  EXPECT_THAT(test::ReadText(out / "pairs.md"), HasSubstr("view_02 left out"));
+}
+
 TEST(RegisterCli, NoViewsAtAllIsAnError) {
   const fs::path tmp = test::TempDir();
   const fs::path empty = tmp / "empty";
