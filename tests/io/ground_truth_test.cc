@@ -115,6 +115,24 @@ TEST(GroundTruth, Markers2dAndModalTruthRoundTrip) {
   ASSERT_EQ(with_peaks.branches[1].peaks.size(), 1u);
   EXPECT_EQ(with_peaks.branches[1].peaks[0].damping_ratio, 0.04);
   EXPECT_TRUE(with_peaks.branches[0].peaks.empty());
+  // Files without the effective masses (older ones) read as absent.
+  EXPECT_FALSE(with_peaks.modes[0].horizontal_mass_fraction.has_value());
+  EXPECT_FALSE(with_peaks.lowest_sway_mode.has_value());
+
+  // The optional effective-mass fractions and the lowest sway mode round-trip too.
+  truth.modes[0].horizontal_mass_fraction = 0.002;
+  truth.modes[0].torsion_mass_fraction = 0.7;
+  truth.modes[1].horizontal_mass_fraction = 0.55;
+  truth.modes[1].torsion_mass_fraction = 0.01;
+  truth.lowest_sway_mode = 1;
+  WriteModalTruth(truth, dir / "modal.json");
+  const ModalTruth with_masses = ReadModalTruth(dir / "modal.json");
+  EXPECT_EQ(with_masses.modes[0].torsion_mass_fraction, 0.7);
+  EXPECT_EQ(with_masses.modes[1].horizontal_mass_fraction, 0.55);
+  EXPECT_EQ(with_masses.lowest_sway_mode, 1);
+  truth.lowest_sway_mode = 2;  // no such mode
+  WriteModalTruth(truth, dir / "modal.json");
+  EXPECT_THAT(ErrorOf([&] { ReadModalTruth(dir / "modal.json"); }), HasSubstr("lowest_sway_mode"));
   EXPECT_THAT(ErrorOf([&] { ReadModalTruth(dir / "none.json"); }), HasSubstr("missing"));
 }
 

@@ -39,6 +39,14 @@ TEST(FemTruth, CantileverMarkersSeeTheFirstMode) {
   const ModalTruth truth = ComputeModalTruth(model, modes, tree, HeldState(model, 0, {10, 0, 0}));
   EXPECT_EQ(truth.source, "fem");
   ASSERT_EQ(truth.modes.size(), 12u);
+  // Every mode carries its effective-mass fractions (fem_effective_mass.h): the first bending
+  // pair each about 61% of the horizontal mass, so the lowest sway mode is the first.
+  for (const ModalTruth::TreeMode& m : truth.modes) {
+    ASSERT_TRUE(m.horizontal_mass_fraction.has_value());
+    ASSERT_TRUE(m.torsion_mass_fraction.has_value());
+  }
+  EXPECT_NEAR(*truth.modes[0].horizontal_mass_fraction, 0.613, 0.02);
+  EXPECT_EQ(truth.lowest_sway_mode, 0);
   const double f1 = test::CantileverFrequencyHz(test::kBetaL1, wood, 2.0, 0.02);
   ASSERT_EQ(truth.links.size(), 2u);
   EXPECT_EQ(truth.links[0].parent, -1);  // the root marker's displacement first

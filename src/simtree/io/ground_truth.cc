@@ -250,9 +250,24 @@ ModalTruth ReadModalTruth(const fs::path& path) {
   const auto& modes = r.Array(r.Field(doc, "modes", ""), "modes");
   for (size_t i = 0; i < modes.size(); ++i) {
     const std::string at = Element("modes", i);
-    t.modes.push_back(
-        {r.Number(r.Field(modes[i], "frequency_hz", at), Member(at, "frequency_hz")),
-         r.Number(r.Field(modes[i], "damping_ratio", at), Member(at, "damping_ratio"))});
+    ModalTruth::TreeMode m;
+    m.frequency_hz = r.Number(r.Field(modes[i], "frequency_hz", at), Member(at, "frequency_hz"));
+    m.damping_ratio = r.Number(r.Field(modes[i], "damping_ratio", at), Member(at, "damping_ratio"));
+    // Optional: files before the effective masses have neither.
+    const auto optional = [&](const char* key, std::optional<double>& field) {
+      if (r.Has(modes[i], key)) field = r.Number(modes[i][key], Member(at, key));
+    };
+    optional("horizontal_mass_fraction", m.horizontal_mass_fraction);
+    optional("torsion_mass_fraction", m.torsion_mass_fraction);
+    t.modes.push_back(m);
+  }
+  if (r.Has(doc, "lowest_sway_mode")) {
+    const int mode = r.Integer(doc["lowest_sway_mode"], "lowest_sway_mode");
+    if (mode < 0 || mode >= static_cast<int>(t.modes.size())) {
+      r.Fail("lowest_sway_mode", fmt::format("expected an index into modes (0-{}), got {}",
+                                             static_cast<int>(t.modes.size()) - 1, mode));
+    }
+    t.lowest_sway_mode = mode;
   }
   const auto& links = r.Array(r.Field(doc, "links", ""), "links");
   for (size_t i = 0; i < links.size(); ++i) {
@@ -282,7 +297,10 @@ ModalTruth ReadModalTruth(const fs::path& path) {
 void WriteModalTruth(const ModalTruth& t, const fs::path& path) {
   ojson modes = ojson::array(), links = ojson::array(), branches = ojson::array();
   for (const auto& m : t.modes) {
-    modes.push_back({{"frequency_hz", m.frequency_hz}, {"damping_ratio", m.damping_ratio}});
+    ojson mode = {{"frequency_hz", m.frequency_hz}, {"damping_ratio", m.damping_ratio}};
+    if (m.horizontal_mass_fraction) mode["horizontal_mass_fraction"] = *m.horizontal_mass_fraction;
+    if (m.torsion_mass_fraction) mode["torsion_mass_fraction"] = *m.torsion_mass_fraction;
+    modes.push_back(std::move(mode));
   }
   for (const auto& l : t.links) {
     ojson link = {{"parent", l.parent},
@@ -298,8 +316,10 @@ void WriteModalTruth(const ModalTruth& t, const fs::path& path) {
     WritePeaks(b.peaks, branch);
     branches.push_back(std::move(branch));
   }
-  const ojson doc = {{"format", kModalFormat}, {"version", 1},   {"source", t.source},
-                     {"modes", modes},         {"links", links}, {"branches", branches}};
+  ojson doc = {{"format", kModalFormat}, {"version", 1}, {"source", t.source}, {"modes", modes}};
+  if (t.lowest_sway_mode) doc["lowest_sway_mode"] = *t.lowest_sway_mode;
+  doc["links"] = std::move(links);
+  doc["branches"] = std::move(branches);
   WriteFileAtomically(path, Dump(doc));
 }
 

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -81,6 +82,11 @@ struct ModalTruth {
   struct TreeMode {
     double frequency_hz = 0.0;
     double damping_ratio = 0.0;
+    // Effective-mass fractions (synth/fem_effective_mass.h): the share of the horizontal mass
+    // (x and y summed) and of the polar moment about the vertical through the trunk base the
+    // mode carries. Optional in the file (older files have neither).
+    std::optional<double> horizontal_mass_fraction = std::nullopt;
+    std::optional<double> torsion_mass_fraction = std::nullopt;
   };
   // One mode's share of a deflection signal after release (optional in the file: "peaks").
   struct ModePeak {
@@ -110,6 +116,9 @@ struct ModalTruth {
   };
   std::string source;           // what produced it ("fem", or "stand-in" while the FEM is not in)
   std::vector<TreeMode> modes;  // ascending frequency
+  // The lowest sway mode (index into `modes`; synth/fem_effective_mass.h's LowestSwayMode).
+  // Optional in the file (older files do not have it; absent too when no mode sways).
+  std::optional<int> lowest_sway_mode = std::nullopt;
   std::vector<Link> links;
   std::vector<BranchTruth> branches;
 };

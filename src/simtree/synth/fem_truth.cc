@@ -8,6 +8,7 @@
 
 #include "simtree/core/error.h"
 #include "simtree/core/validate.h"
+#include "simtree/synth/fem_effective_mass.h"
 
 namespace simtree {
 namespace {
@@ -159,9 +160,12 @@ ModalTruth ComputeModalTruth(const FemModel& model, const ModalBasis& modes, con
 
   ModalTruth truth;
   truth.source = "fem";
+  const EffectiveMasses masses = ComputeEffectiveMasses(model, modes);
   for (int i = 0; i < modes.count(); ++i) {
-    truth.modes.push_back({modes.frequency_hz[i], modes.damping_ratio[i]});
+    truth.modes.push_back(
+        {modes.frequency_hz[i], modes.damping_ratio[i], masses.horizontal[i], masses.torsion[i]});
   }
+  if (const int sway = LowestSwayMode(masses); sway >= 0) truth.lowest_sway_mode = sway;
   const auto fill = [&](const ModalSignal& signal, auto& out) {
     out.peaks = StrongestModes(signal, modes, decay, options);
     out.frequency_hz = out.peaks.front().frequency_hz;
