@@ -8,13 +8,15 @@
 # usage: bench/synth_link_truth.sh <simtree binary> <work folder> "<seeds>" species...
 #   e.g. bench/synth_link_truth.sh build/bin/simtree /tmp/truth "$(seq -s' ' 1 10)" \
 #          acer_palmatum magnolia acer_rubrum
+# SYNTH_ARGS adds options to every `simtree synth` (use a work folder per value: captures are
+# reused), e.g. SYNTH_ARGS="--pull-position 0.65" for the rope where it was tied before.
 set -euo pipefail
 simtree=$1; work=$2; seeds=$3; shift 3
 for sp in "$@"; do
   if [ -f "$sp" ]; then arg=(--species-file "$sp"); name=$(basename "$sp" .json); else arg=(--species "$sp"); name=$sp; fi
   for s in $seeds; do
     [ -f "$work/${name}_$s/gt/modal.json" ] || "$simtree" -q synth "${arg[@]}" --seed "$s" \
-      --truth-only --out "$work/${name}_$s" > /dev/null
+      --truth-only ${SYNTH_ARGS:-} --out "$work/${name}_$s" > /dev/null
   done
   python3 - "$work" "$name" "$seeds" <<'PY'
 import json, sys

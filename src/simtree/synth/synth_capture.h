@@ -45,9 +45,10 @@ struct SynthOptions {
   double pull_deflection_per_length = 0.15;
   // Where the rope is tied on the pulled branch, as a share of its length from its base. Near
   // the crotch (35%), where a person ties a rope to pull a branch hard, the pull swings the whole
-  // tree and the branches near it, as in the paper's Fig. 15, and the links' dominant modes fall
-  // inside the paper's Table IV; tied far out (65%, before 2026-11-26) it mostly bends the pulled
-  // branch, whose own mode (2-4 Hz on acer_rubrum and magnolia) then dominates the links on it
+  // tree and the branches near it, as in the paper's Fig. 15, and on magnolia and acer_rubrum
+  // the links' dominant modes fall inside the paper's Table IV (117 of 120 each, seeds 1-10);
+  // tied far out (65%, before 2026-11-26) it mostly bends the pulled branch, whose own mode
+  // (2-4 Hz on acer_rubrum) then dominates the links on it
   // (docs/synth.md, "Where the rope is tied"). The branch itself is chosen by its outer part
   // (reach, length, taped levels), so the markers and the static scans do not depend on it.
   double pull_position = 0.35;
