@@ -172,6 +172,7 @@ int main(int argc, char** argv) {
   fs::path cache = fs::temp_directory_path() / "simtree_registration_bench";
   bool skip_baselines = false, skip_table1 = false, ablations = false, fine_study = false;
   bool views_only = false, skip_paper = false;
+  double screen_below_overlap = PairOptions{}.screen_below_overlap;
   std::vector<std::string> only_pairs;
   app.add_option("--synth-seeds", synth_seeds,
                  "Synthetic captures to make (seeds from --first-seed)");
@@ -191,6 +192,9 @@ int main(int argc, char** argv) {
   app.add_flag("--skip-baselines", skip_baselines, "Ours only");
   app.add_flag("--skip-table1", skip_table1, "No Table I");
   app.add_flag("--skip-paper", skip_paper, "No \"ours without priors\" row");
+  app.add_option("--screen-below", screen_below_overlap,
+                 "Ours: run the turn screen only for results overlapping less than this")
+      ->capture_default_str();
   app.add_option("--pairs", only_pairs,
                  "Only these pairs, as source:target view indices (e.g. 7:1), in every scene");
   app.add_flag("--ablations", ablations, "Ours with each prior left out in turn");
@@ -227,7 +231,8 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  const PairOptions default_options;
+  PairOptions default_options;
+  default_options.screen_below_overlap = screen_below_overlap;
   std::vector<Outcome> outcomes;
   std::deque<PairResult> ours_results;  // what ours' checks measured, for the JSON
   auto record = [&](const Scene& scene, size_t s, size_t t, const std::string& method,

@@ -427,7 +427,9 @@ TurnedFineResult RefineWithTurns(const RegistrationView& source, const Registrat
   result.fine = RefinePair(source, target, initial, options);
   if (!target.trunk) return result;
   const Eigen::Isometry3d found = result.fine.icp.target_from_source;
-  const int wanted = refinements >= 0 ? refinements : options.turned_refinements;
+  result.screened = result.fine.icp.fitness < options.screen_below_overlap;
+  const int wanted =
+      result.screened ? (refinements >= 0 ? refinements : options.turned_refinements) : 0;
   for (const TrunkMove& move : ScreenMoves(source, target, found, shifts_m, wanted, options)) {
     FineResult moved = RefinePair(source, target, MoveAboutTrunk(target, move) * found, options);
     if (moved.icp.fitness > result.fine.icp.fitness) {
