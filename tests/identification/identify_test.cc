@@ -72,6 +72,28 @@ TEST(Identify, EveryLinkWithinOnePercentInFrequencyAndFifteenInDampingUnderTrack
 
 // A value the fit could not pin down does not set a range's end: it is listed as uncertain and
 // only the range over every value still shows it.
+// The links' modes are the tree's: with joint poles each link still reads its own dominant one.
+TEST(Identify, JointPolesKeepEachLinksOwnDominantMode) {
+  std::vector<MarkerLink> markers;
+  const Trajectories truth = MakeMarkerTrajectories(ThreeLinks(), 30.0, 2.0, 10.0, &markers);
+  TrackerErrorOptions noise;
+  noise.seed = 4;
+  IdentifyOptions options;
+  options.joint_poles = true;
+  const IdentificationResult r =
+      IdentifyMaterials(SimulateTrackerError(truth, noise), markers, options);
+  EXPECT_THAT(r.joint_poles_note, HasSubstr("joint poles of 4 links"));
+  ASSERT_EQ(r.links.size(), 4u);
+  for (int k = 0; k < 4; ++k) {
+    const LinkIdentification& link = r.links[k];
+    ASSERT_TRUE(link.measured()) << link.deflection.link.label << ": " << link.value.message;
+    EXPECT_THAT(link.value.message, HasSubstr("joint poles")) << k;
+    EXPECT_NEAR(link.value.frequency_hz, kTruth[k].f, 0.01 * kTruth[k].f) << k;
+    EXPECT_NEAR(link.value.damping_ratio, kTruth[k].zeta, 0.15 * kTruth[k].zeta) << k;
+    EXPECT_GT(link.value.damping_std, 0) << k;
+  }
+}
+
 TEST(Identify, RangesLeaveOutValuesWithALargeUncertainty) {
   auto value = [](double f, double f_std, double zeta, double zeta_std) {
     ModalEstimate e;

@@ -110,14 +110,20 @@ void EstimateSpectral(const SampledSignal& signal, EstimatorKind kind, double mi
 // tree's sway and still die out within a second; the sway then owns the spectrum.
 void EstimateFit(const SampledSignal& signal, double min_hz, double max_hz,
                  const EstimatorOptions& options, SignalEstimate& out) {
-  DampedSinusoidFit fit = FitDampedSinusoids(signal, min_hz, max_hz, options);
+  ReadFittedModes(FitDampedSinusoids(signal, min_hz, max_hz, options), signal.channels(),
+                  signal.duration_s(), min_hz, max_hz, options, out);
+}
+
+}  // namespace
+
+void ReadFittedModes(DampedSinusoidFit fit, int channels, double record_s, double min_hz,
+                     double max_hz, const EstimatorOptions& options, SignalEstimate& out) {
   auto from_mode = [&](const FittedMode& mode, int channel) {
     ModalEstimate e;
     e.channel = channel;
     e.amplitude = channel < 0 ? mode.amplitude : mode.channel_amplitude[channel];
-    if (TooShort(mode.frequency_hz, signal.duration_s(), options)) {
-      e = Failed(EstimateStatus::kTooShort,
-                 TooShortMessage(mode.frequency_hz, signal.duration_s(), options));
+    if (TooShort(mode.frequency_hz, record_s, options)) {
+      e = Failed(EstimateStatus::kTooShort, TooShortMessage(mode.frequency_hz, record_s, options));
       e.channel = channel;
       return e;
     }
@@ -141,7 +147,6 @@ void EstimateFit(const SampledSignal& signal, double min_hz, double max_hz,
     return m.frequency_hz >= min_hz && m.frequency_hz <= max_hz &&
            m.damping_ratio <= options.max_damping_ratio;
   };
-  const double record_s = signal.duration_s();
   auto peak = [&](const FittedMode& m, int channel) {
     const double a = channel < 0 ? m.amplitude : m.channel_amplitude[channel];
     const double s = m.decay_rate;
@@ -172,12 +177,12 @@ void EstimateFit(const SampledSignal& signal, double min_hz, double max_hz,
   } else {
     out.dominant = from_mode(*dominant, -1);
     int channel = 0;
-    for (int c = 1; c < signal.channels(); ++c) {
+    for (int c = 1; c < channels; ++c) {
       if (dominant->channel_amplitude[c] > dominant->channel_amplitude[channel]) channel = c;
     }
     out.dominant.channel = channel;
   }
-  for (int c = 0; c < signal.channels(); ++c) {
+  for (int c = 0; c < channels; ++c) {
     const FittedMode* mode = strongest(c);
     out.per_channel.push_back(mode ? from_mode(*mode, c)
                                    : Failed(EstimateStatus::kNoPeak, out.dominant.message));
@@ -185,8 +190,6 @@ void EstimateFit(const SampledSignal& signal, double min_hz, double max_hz,
   }
   out.fit = std::move(fit);
 }
-
-}  // namespace
 
 const char* ToString(EstimatorKind kind) {
   switch (kind) {

@@ -163,4 +163,11 @@ SpectralPeak FindHalfPowerPeak(const SampledSignal& signal, int channel,
 DampedSinusoidFit FitDampedSinusoids(const SampledSignal& signal, double min_hz, double max_hz,
                                      const EstimatorOptions& options = {});
 
+// Estimator (c)'s reading of a fitted model of a `channels`-channel record `record_s` long: the
+// dominant mode is the strongest inside [min_hz, max_hz] (amplitude times the integral of its
+// envelope over the record, a (1 - e^(-s T)) / s), each channel's the strongest in that channel.
+// Sets out.dominant, out.per_channel and out.fit.
+void ReadFittedModes(DampedSinusoidFit fit, int channels, double record_s, double min_hz,
+                     double max_hz, const EstimatorOptions& options, SignalEstimate& out);
+
 }  // namespace simtree

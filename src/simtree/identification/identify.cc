@@ -75,6 +75,49 @@ MaterialRanges IdentificationResult::Ranges(std::optional<EstimatorKind> kind,
   return ComputeRanges(values, bounds);
 }
 
+namespace {
+
+// The damped sinusoid fit's estimate of every link it measured, re-read on joint poles.
+void ApplyJointPoles(const IdentifyOptions& options, IdentificationResult& out) {
+  constexpr EstimatorKind kFit = EstimatorKind::kDampedSinusoidFit;
+  std::vector<SignalEstimate*> estimates;
+  std::vector<SampledSignal> signals;
+  std::vector<LinkIdentification*> links;
+  for (LinkIdentification& link : out.links) {
+    for (SignalEstimate& e : link.estimates) {
+      if (e.estimator != kFit || e.dominant.status != EstimateStatus::kOk) continue;
+      estimates.push_back(&e);
+      signals.push_back(link.deflection.signal);
+      links.push_back(&link);
+    }
+  }
+  if (signals.size() < 2) {
+    out.joint_poles_note =
+        fmt::format("joint poles: {} link measured, nothing to join", signals.size());
+    return;
+  }
+  JointPoles joint = EstimateJointPoles(signals, options.estimation, options.joint);
+  out.joint_poles_note = joint.message;
+  if (!joint.ok) return;
+  int kept = 0;
+  for (size_t i = 0; i < signals.size(); ++i) {
+    SignalEstimate& e = joint.links[i];
+    if (e.dominant.status != EstimateStatus::kOk) {
+      ++kept;
+      continue;
+    }
+    const std::string& own = estimates[i]->dominant.message;
+    e.dominant.message = own.empty() ? "joint poles" : own + "; joint poles";
+    *estimates[i] = std::move(e);
+    if (estimates[i] == &links[i]->estimates.front()) links[i]->value = estimates[i]->dominant;
+  }
+  if (kept > 0) {
+    out.joint_poles_note += fmt::format("; {} links keep their own fit (no joint mode)", kept);
+  }
+}
+
+}  // namespace
+
 IdentificationResult IdentifyMaterials(const Trajectories& input,
                                        const std::vector<MarkerLink>& markers,
                                        const IdentifyOptions& options, const std::string& source) {
@@ -161,6 +204,7 @@ IdentificationResult IdentifyMaterials(const Trajectories& input,
     link.deflection = std::move(deflection);
     out.links.push_back(std::move(link));
   }
+  if (options.joint_poles) ApplyJointPoles(options, out);
   return out;
 }
 

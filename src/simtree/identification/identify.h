@@ -12,6 +12,7 @@
 
 #include "simtree/identification/deflection.h"
 #include "simtree/identification/estimators.h"
+#include "simtree/identification/joint_poles.h"
 #include "simtree/identification/release.h"
 #include "simtree/identification/track_outliers.h"
 #include "simtree/io/capture.h"
@@ -35,6 +36,11 @@ struct IdentifyOptions {
   // Tracker jumps are turned into gaps before anything else (track_outliers.h).
   bool remove_outliers = true;
   TrackOutlierOptions outliers;
+  // Experimental: replace the damped sinusoid fit's values of the links it measured by a reading
+  // on poles fitted to all those links at once (joint_poles.h); a link whose joint reading fails
+  // keeps its own.
+  bool joint_poles = false;
+  JointPolesOptions joint;
 };
 
 struct LinkIdentification {
@@ -90,6 +96,7 @@ struct IdentificationResult {
   double frame_rate_hz = 0.0;
   EstimatorKind estimator = kDefaultEstimator;
   std::vector<LinkIdentification> links;
+  std::string joint_poles_note;  // with IdentifyOptions::joint_poles: what the joint fit did
 
   MaterialRanges Ranges(std::optional<EstimatorKind> kind = std::nullopt,
                         const RangeOptions& bounds = {}) const;

@@ -1,0 +1,57 @@
+#pragma once
+// Poles shared by every link of a tree (the poly-reference idea of operational modal analysis).
+//
+// A tree's modes are global: every link swings at the same frequencies with the same damping,
+// only in different proportions. One link alone cannot tell two modes a few percent apart from
+// one decaying mode when their beat is longer than the record; links that mix them in different
+// ratios can. Here the links' records are stacked (each scaled to unit RMS, so each link weighs
+// the same), reduced to their strongest principal components, and estimator (c)'s fit
+// (FitDampedSinusoids) finds the poles of those components: how many modes (BIC) and where to
+// start. The poles are then refined on every link's valid samples at once (variable projection:
+// Levenberg-Marquardt on the poles, each link's offsets and amplitudes by linear least squares),
+// so neither filled gaps nor the components left out bias them. Each link then gets its own
+// amplitude of each joint pole (least squares of that pole alone on its valid samples: in a joint
+// least squares close poles can cancel each other with large amplitudes) and its dominant mode by
+// estimator (c)'s rule (ReadFittedModes).
+//
+// Gaps: the principal components need every sample, so each link's gaps are filled by linear
+// interpolation for the starting fit only. Standard deviations are the refinement's (its
+// Jacobian with the amplitudes projected out, inflated for lag-1 correlated residuals): one per
+// pole, shared by every link that reads that pole.
+//
+// Measured on the synthetic bench (bench/identification_on_synth.sh, identify with
+// --joint-poles; numbers in the commit that added this): pooled damping errors halve, but a
+// capture's links then share one or two values, so one merged pair of close poles (BIC keeps
+// fewer modes on noisy records) moves every link of that capture together. Hence off by default.
+
+#include <string>
+#include <vector>
+
+#include "simtree/identification/estimators.h"
+#include "simtree/identification/sampled_signal.h"
+
+namespace simtree {
+
+struct JointPolesOptions {
+  int components = 6;  // principal components of the stacked links the poles are fitted on
+  int max_modes = 12;  // most modes of the joint model (chosen by BIC)
+};
+
+struct JointPoles {
+  bool ok = false;
+  std::string message;  // why there are no joint poles, or what was fitted
+  // The fit on the principal components, its poles (and their standard deviations) replaced by
+  // the refined ones; its amplitudes are the components' before refinement.
+  DampedSinusoidFit fit;
+  // Per input signal, in order: estimator (c)'s reading with the joint poles and the link's own
+  // amplitudes (fit holds that link's model).
+  std::vector<SignalEstimate> links;
+};
+
+// `signals`: the links' records, all on the same sample grid (same start, step and length).
+// Throws std::invalid_argument when they are not.
+JointPoles EstimateJointPoles(const std::vector<SampledSignal>& signals,
+                              const EstimatorOptions& estimation,
+                              const JointPolesOptions& options = {});
+
+}  // namespace simtree
