@@ -389,7 +389,6 @@ DampedSinusoidFit FitDampedSinusoids(const SampledSignal& signal, double min_hz,
     FittedMode mode;
     const double s = m.p[2 * k];
     double w = m.p[2 * k + 1];
-    mode.decay_rate = s;
     mode.cos_amplitude.resize(channels);
     mode.sin_amplitude.resize(channels);
     mode.channel_amplitude.resize(channels);
@@ -401,23 +400,14 @@ DampedSinusoidFit FitDampedSinusoids(const SampledSignal& signal, double min_hz,
       w = -w;
       mode.sin_amplitude = -mode.sin_amplitude;
     }
-    mode.angular_frequency = w;
     for (int c = 0; c < channels; ++c) {
       mode.channel_amplitude[c] = std::hypot(mode.cos_amplitude[c], mode.sin_amplitude[c]);
     }
     mode.amplitude = mode.channel_amplitude.norm();
-    const double wn = std::hypot(s, w);
-    mode.frequency_hz = wn / kTwoPi;
-    mode.damping_ratio = s / wn;
-    // Propagate the (s, w) covariance to f = wn / 2pi and zeta = s / wn.
-    const double css = covariance(2 * k, 2 * k), cww = covariance(2 * k + 1, 2 * k + 1);
     const double csw = covariance(2 * k, 2 * k + 1);
-    const Eigen::Vector2d df(s / (kTwoPi * wn), w / (kTwoPi * wn));
-    const Eigen::Vector2d dz(w * w / (wn * wn * wn), -s * w / (wn * wn * wn));
     Eigen::Matrix2d cov;
-    cov << css, csw, csw, cww;
-    mode.frequency_std_hz = std::sqrt(std::max(0.0, df.dot(cov * df)));
-    mode.damping_std = std::sqrt(std::max(0.0, dz.dot(cov * dz)));
+    cov << covariance(2 * k, 2 * k), csw, csw, covariance(2 * k + 1, 2 * k + 1);
+    SetPole(s, w, cov, mode);
     out.modes.push_back(std::move(mode));
   }
   std::stable_sort(
@@ -425,6 +415,20 @@ DampedSinusoidFit FitDampedSinusoids(const SampledSignal& signal, double min_hz,
       [](const FittedMode& a, const FittedMode& b) { return a.amplitude > b.amplitude; });
   if (!best.converged) out.message = fmt::format("stopped after {} iterations", best.iterations);
   return out;
+}
+
+void SetPole(double decay_rate, double angular_frequency, const Eigen::Matrix2d& covariance,
+             FittedMode& mode) {
+  const double s = decay_rate, w = angular_frequency, wn = std::hypot(s, w);
+  mode.decay_rate = s;
+  mode.angular_frequency = w;
+  mode.frequency_hz = wn / kTwoPi;
+  mode.damping_ratio = s / wn;
+  // Propagate the (s, w) covariance to f = wn / 2pi and zeta = s / wn.
+  const Eigen::Vector2d df(s / (kTwoPi * wn), w / (kTwoPi * wn));
+  const Eigen::Vector2d dz(w * w / (wn * wn * wn), -s * w / (wn * wn * wn));
+  mode.frequency_std_hz = std::sqrt(std::max(0.0, df.dot(covariance * df)));
+  mode.damping_std = std::sqrt(std::max(0.0, dz.dot(covariance * dz)));
 }
 
 }  // namespace simtree

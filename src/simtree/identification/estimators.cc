@@ -191,6 +191,13 @@ void ReadFittedModes(DampedSinusoidFit fit, int channels, double record_s, doubl
   out.fit = std::move(fit);
 }
 
+SearchBand BandOf(const EstimatorOptions& options, double duration_s, double dt) {
+  const double nyquist = 0.5 / dt;
+  return {
+      options.min_frequency_hz > 0 ? options.min_frequency_hz : 1.0 / duration_s,
+      options.max_frequency_hz > 0 ? std::min(options.max_frequency_hz, nyquist) : 0.8 * nyquist};
+}
+
 const char* ToString(EstimatorKind kind) {
   switch (kind) {
     case EstimatorKind::kHalfPowerFft:
@@ -331,11 +338,7 @@ SignalEstimate EstimateModes(const SampledSignal& input, EstimatorKind estimator
                                 "{:.3g})",
                                 largest_spread, out.noise_level));
   }
-  const double nyquist = 0.5 / signal.dt;
-  const double min_hz =
-      options.min_frequency_hz > 0 ? options.min_frequency_hz : 1.0 / signal.duration_s();
-  const double max_hz =
-      options.max_frequency_hz > 0 ? std::min(options.max_frequency_hz, nyquist) : 0.8 * nyquist;
+  const auto [min_hz, max_hz] = BandOf(options, signal.duration_s(), signal.dt);
   if (estimator == EstimatorKind::kDampedSinusoidFit) {
     EstimateFit(signal, min_hz, max_hz, options, out);
   } else {

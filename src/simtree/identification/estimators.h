@@ -155,6 +155,18 @@ struct SignalEstimate {
 SignalEstimate EstimateModes(const SampledSignal& signal, EstimatorKind estimator,
                              const EstimatorOptions& options = {});
 
+// The band EstimateModes searches on a record `duration_s` long sampled every `dt` s:
+// options' band, or from one period over the record to 0.8 of the Nyquist frequency.
+struct SearchBand {
+  double min_hz = 0.0, max_hz = 0.0;
+};
+SearchBand BandOf(const EstimatorOptions& options, double duration_s, double dt);
+
+// Sets a fitted mode's pole (decay rate s, damped angular frequency w >= 0), its natural
+// frequency and damping ratio, and their standard deviations from the 2 x 2 covariance of (s, w).
+void SetPole(double decay_rate, double angular_frequency, const Eigen::Matrix2d& covariance,
+             FittedMode& mode);
+
 // The estimators on their own (no flatness or gap checks; `signal` trimmed of invalid ends).
 // `min_hz` / `max_hz` is the band searched.
 SpectralPeak FindHalfPowerPeak(const SampledSignal& signal, int channel,

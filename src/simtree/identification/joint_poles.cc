@@ -9,10 +9,17 @@
 #include <Eigen/QR>
 #include <Eigen/SVD>
 
-#include "simtree/core/units.h"
-
 namespace simtree {
 namespace {
+
+// The indices of a record's valid samples.
+std::vector<int> ValidRows(const SampledSignal& signal) {
+  std::vector<int> rows;
+  for (int i = 0; i < signal.size(); ++i) {
+    if (signal.valid[i]) rows.push_back(i);
+  }
+  return rows;
+}
 
 // One link's reading of the joint poles: offsets and residual from linear least squares on all
 // poles over its valid samples (t from the start of the shared grid), each mode's amplitudes from
@@ -20,10 +27,7 @@ namespace {
 DampedSinusoidFit FitAmplitudes(const SampledSignal& signal, const DampedSinusoidFit& joint) {
   const int modes = static_cast<int>(joint.modes.size());
   const int channels = signal.channels();
-  std::vector<int> rows;
-  for (int i = 0; i < signal.size(); ++i) {
-    if (signal.valid[i]) rows.push_back(i);
-  }
+  const std::vector<int> rows = ValidRows(signal);
   const int n = static_cast<int>(rows.size());
   Eigen::MatrixXd x(n, 1 + 2 * modes), y(n, channels);
   for (int j = 0; j < n; ++j) {
@@ -161,17 +165,7 @@ void RefinePoles(const std::vector<LinkSamples>& links, int linear_parameters,
       (j.transpose() * j).completeOrthogonalDecomposition().pseudoInverse() * (rss / dof) *
       (1 + rho) / (1 - rho);
   for (int k = 0; k < modes; ++k) {
-    FittedMode& mode = fit.modes[k];
-    const double s = p[2 * k], w = std::abs(p[2 * k + 1]), wn = std::hypot(s, w);
-    mode.decay_rate = s;
-    mode.angular_frequency = w;
-    mode.frequency_hz = wn / kTwoPi;
-    mode.damping_ratio = s / wn;
-    const Eigen::Vector2d df(s / (kTwoPi * wn), w / (kTwoPi * wn));
-    const Eigen::Vector2d dz(w * w / (wn * wn * wn), -s * w / (wn * wn * wn));
-    const Eigen::Matrix2d c = cov.block<2, 2>(2 * k, 2 * k);
-    mode.frequency_std_hz = std::sqrt(std::max(0.0, df.dot(c * df)));
-    mode.damping_std = std::sqrt(std::max(0.0, dz.dot(c * dz)));
+    SetPole(p[2 * k], std::abs(p[2 * k + 1]), cov.block<2, 2>(2 * k, 2 * k), fit.modes[k]);
   }
 }
 
@@ -217,14 +211,8 @@ JointPoles EstimateJointPoles(const std::vector<SampledSignal>& signals,
   pcs.valid.assign(first.size(), true);
   for (int c = 0; c < components; ++c) pcs.channel_names.push_back(fmt::format("pc{}", c + 1));
 
-  // The band of EstimateModes.
   const double record_s = pcs.duration_s();
-  const double nyquist = 0.5 / pcs.dt;
-  const double min_hz =
-      estimation.min_frequency_hz > 0 ? estimation.min_frequency_hz : 1.0 / record_s;
-  const double max_hz = estimation.max_frequency_hz > 0
-                            ? std::min(estimation.max_frequency_hz, nyquist)
-                            : 0.8 * nyquist;
+  const auto [min_hz, max_hz] = BandOf(estimation, record_s, pcs.dt);
   EstimatorOptions fit_options = estimation;
   fit_options.max_modes = options.max_modes;
   out.fit = FitDampedSinusoids(pcs, min_hz, max_hz, fit_options);
@@ -238,10 +226,7 @@ JointPoles EstimateJointPoles(const std::vector<SampledSignal>& signals,
     for (size_t i = 0; i < signals.size(); ++i) {
       const SampledSignal& s = signals[i];
       LinkSamples l;
-      std::vector<int> rows;
-      for (int j = 0; j < s.size(); ++j) {
-        if (s.valid[j]) rows.push_back(j);
-      }
+      const std::vector<int> rows = ValidRows(s);
       l.y.resize(static_cast<int>(rows.size()), s.channels());
       for (size_t j = 0; j < rows.size(); ++j) {
         l.t.push_back(rows[j] * s.dt);
