@@ -225,8 +225,6 @@ ReconstructionResult ReconstructTree(std::span<const Eigen::Vector3d> points,
   double length = fit_length;
   while (misses_the_trunk(result.trunk, fit_length) && length > options.trunk_fit_min_m + 1e-9) {
     length = std::max(0.5 * length, options.trunk_fit_min_m);
-    const std::vector<Eigen::Vector3d> previous_points = trunk_points;
-    const std::vector<char> previous_voxels = trunk_voxel;
     select_trunk_points(length);
     TrunkFit shorter = FitTrunkCylinder(trunk_points, z_base, trunk_options);
     spdlog::debug("trunk on the lowest {:.2f} m: found {}, radius {:.4f}, length {:.2f}; {}",
@@ -238,9 +236,9 @@ ReconstructionResult ReconstructTree(std::span<const Eigen::Vector3d> points,
       fit_length = length;
       break;
     }
-    trunk_points = previous_points;
-    trunk_voxel = previous_voxels;
   }
+  // No shorter stretch held: the points are the full stretch's again.
+  if (shortened.empty() && length != fit_length) select_trunk_points(fit_length);
   if (options.trunk_on_full_cloud && result.trunk.found &&
       result.trunk.cylinder.radius < options.trunk_voxels_for_full_cloud * voxel) {
     // A trunk only a few voxels in radius is measured again on the points themselves: the points
