@@ -105,12 +105,20 @@ Eigen::VectorXd ProjectedResidual(const std::vector<LinkSamples>& links, const E
   return out;
 }
 
+// What a refinement leaves: the stacked residual's sum of squares, its length, and its lag-1
+// autocorrelation (clamped to [0, 0.95]).
+struct Refinement {
+  double rss = 0.0;
+  Eigen::Index count = 0;
+  double lag1 = 0.0;
+};
+
 // Refines the poles of `fit` on every link's valid samples (no filled gaps, no components left
 // out): Levenberg-Marquardt on the poles alone, forward-difference Jacobian; the poles' standard
 // errors from that Jacobian (the amplitudes projected out), inflated for lag-1 correlated
 // residuals as FitDampedSinusoids does.
-void RefinePoles(const std::vector<LinkSamples>& links, int linear_parameters,
-                 DampedSinusoidFit& fit) {
+Refinement RefinePoles(const std::vector<LinkSamples>& links, int linear_parameters,
+                       DampedSinusoidFit& fit) {
   const int modes = static_cast<int>(fit.modes.size());
   Eigen::VectorXd p(2 * modes);
   for (int k = 0; k < modes; ++k) {
@@ -167,6 +175,65 @@ void RefinePoles(const std::vector<LinkSamples>& links, int linear_parameters,
   for (int k = 0; k < modes; ++k) {
     SetPole(p[2 * k], std::abs(p[2 * k + 1]), cov.block<2, 2>(2 * k, 2 * k), fit.modes[k]);
   }
+  return {rss, r.size(), rho};
+}
+
+// Parameters of a joint model of `modes` poles: two per pole, and per link channel an offset and
+// two amplitudes per pole.
+int JointParameters(int modes, int link_channels) {
+  return 2 * modes + link_channels * (1 + 2 * modes);
+}
+
+// BIC of a joint model on the stacked residual. Its samples are not independent (unmodelled
+// higher modes and a tracker's error leave the residual correlated from sample to sample), so
+// they count as n (1 - rho) / (1 + rho) independent ones, the variance-equivalent count of an
+// AR(1) series; with all n counted, every extra pole would look worth its parameters.
+double JointBic(const Refinement& r, int parameters) {
+  const double n = static_cast<double>(r.count);
+  const double effective = std::max(2.0, n * (1.0 - r.lag1) / (1.0 + r.lag1));
+  return effective * std::log(std::max(r.rss, 1e-300) / n) + parameters * std::log(effective);
+}
+
+// Close poles merged: BIC on the principal components may explain two modes a few percent apart
+// by one pole whose damping takes up their beat. Every pole is offered split in two, a quarter of
+// the record's frequency resolution (1 / T) either side, all poles refined on every link; the
+// split that lowers the joint BIC most is kept, and the offers repeat until none does or the
+// model holds `max_modes`. A split whose poles come back within `min_split` of each other (relative
+// frequency) found no second mode and is not offered.
+void SplitMergedPoles(const std::vector<LinkSamples>& links, int link_channels, double record_s,
+                      const JointPolesOptions& options, Refinement& current,
+                      DampedSinusoidFit& fit) {
+  constexpr double kTwoPi = 6.283185307179586;
+  double current_bic =
+      JointBic(current, JointParameters(static_cast<int>(fit.modes.size()), link_channels));
+  while (static_cast<int>(fit.modes.size()) < options.max_modes) {
+    const int modes = static_cast<int>(fit.modes.size());
+    double best_bic = current_bic;
+    DampedSinusoidFit best_fit;
+    Refinement best_refinement;
+    for (int k = 0; k < modes; ++k) {
+      DampedSinusoidFit trial = fit;
+      FittedMode upper = trial.modes[k];
+      const double shift = kTwoPi * 0.25 / record_s;
+      trial.modes[k].angular_frequency -= shift;
+      upper.angular_frequency += shift;
+      if (trial.modes[k].angular_frequency <= 0) continue;
+      trial.modes.push_back(upper);
+      const Refinement refined = RefinePoles(links, link_channels * (1 + 2 * (modes + 1)), trial);
+      const double f_low = trial.modes[k].frequency_hz, f_high = trial.modes.back().frequency_hz;
+      if (std::abs(f_high - f_low) < options.min_split * 0.5 * (f_high + f_low)) continue;
+      const double bic = JointBic(refined, JointParameters(modes + 1, link_channels));
+      if (bic < best_bic) {
+        best_bic = bic;
+        best_fit = std::move(trial);
+        best_refinement = refined;
+      }
+    }
+    if (!(best_bic < current_bic)) return;
+    fit = std::move(best_fit);
+    current = best_refinement;
+    current_bic = best_bic;
+  }
 }
 
 }  // namespace
@@ -220,9 +287,9 @@ JointPoles EstimateJointPoles(const std::vector<SampledSignal>& signals,
     out.message = "joint poles: " + out.fit.message;
     return out;
   }
+  int splits = 0;
   {
     std::vector<LinkSamples> samples;
-    int linear = 0;
     for (size_t i = 0; i < signals.size(); ++i) {
       const SampledSignal& s = signals[i];
       LinkSamples l;
@@ -232,14 +299,19 @@ JointPoles EstimateJointPoles(const std::vector<SampledSignal>& signals,
         l.t.push_back(rows[j] * s.dt);
         l.y.row(j) = s.values.row(rows[j]) * scales[i];
       }
-      linear += s.channels() * (1 + 2 * static_cast<int>(out.fit.modes.size()));
       samples.push_back(std::move(l));
     }
-    RefinePoles(samples, linear, out.fit);
+    const int modes = static_cast<int>(out.fit.modes.size());
+    Refinement refined = RefinePoles(samples, channels * (1 + 2 * modes), out.fit);
+    if (options.split_merged_poles) {
+      SplitMergedPoles(samples, channels, record_s, options, refined, out.fit);
+      splits = static_cast<int>(out.fit.modes.size()) - modes;
+    }
   }
   out.ok = true;
-  out.message = fmt::format("joint poles of {} links: {} modes on {} principal components",
-                            signals.size(), out.fit.modes.size(), components);
+  out.message = fmt::format("joint poles of {} links: {} modes on {} principal components{}",
+                            signals.size(), out.fit.modes.size(), components,
+                            splits > 0 ? fmt::format(", {} split on every link", splits) : "");
   for (const SampledSignal& s : signals) {
     SignalEstimate e;
     e.estimator = EstimatorKind::kDampedSinusoidFit;

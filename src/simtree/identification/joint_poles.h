@@ -35,6 +35,10 @@ namespace simtree {
 struct JointPolesOptions {
   int components = 6;  // principal components of the stacked links the poles are fitted on
   int max_modes = 12;  // most modes of the joint model (chosen by BIC)
+  // Offer every pole split in two, refined on every link, kept when the joint BIC falls
+  // (SplitMergedPoles in joint_poles.cc); a split closer than `min_split` (relative) is none.
+  bool split_merged_poles = true;
+  double min_split = 0.002;
 };
 
 struct JointPoles {
