@@ -27,7 +27,7 @@ void RegisterIdentify(CLI::App& app) {
     std::string input, links, tree, camera_pose, output, plots,
         estimator = ToString(kDefaultEstimator);
     double release_time = -1, window = 0;
-    bool no_plots = false, no_compare = false, no_root = false, joint_poles = false;
+    bool no_plots = false, no_compare = false, no_root = false, joint_poles = true;
     double noise_mm = 0, gap_rate = TrackerErrorOptions{}.gap_start_rate;
     uint64_t seed = 1;
     std::string write_noisy, visibility;
@@ -65,10 +65,10 @@ void RegisterIdentify(CLI::App& app) {
                    "Seconds of free decay to use after the release (0: to the end)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  verb->add_flag("--joint-poles", args->joint_poles,
-                 "Experimental: damped_sinusoid_fit values from poles fitted to all measured "
-                 "links at once (they share the tree's modes); per-link amplitudes pick each "
-                 "link's dominant mode");
+  verb->add_flag("--joint-poles,!--per-link", args->joint_poles,
+                 "damped_sinusoid_fit values from poles fitted to all measured links at once "
+                 "(they share the tree's modes; each link's own amplitudes pick its dominant "
+                 "mode), the default; --per-link fits every link on its own");
   verb->add_flag("--no-root", args->no_root, "Do not estimate the root (trunk) marker's motion");
   verb->add_option("--plots", args->plots,
                    "Folder for one spectra PNG per link (default: <out>_spectra beside --out)");

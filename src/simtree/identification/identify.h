@@ -36,10 +36,11 @@ struct IdentifyOptions {
   // Tracker jumps are turned into gaps before anything else (track_outliers.h).
   bool remove_outliers = true;
   TrackOutlierOptions outliers;
-  // Experimental: replace the damped sinusoid fit's values of the links it measured by a reading
-  // on poles fitted to all those links at once (joint_poles.h); a link whose joint reading fails
-  // keeps its own.
-  bool joint_poles = false;
+  // Replace the damped sinusoid fit's values of the links it measured by a reading on poles
+  // fitted to all those links at once (joint_poles.h; a link whose joint reading fails keeps its
+  // own). On by default: it measures better than each link alone on the synthetic pull tests
+  // (docs/identification.md, "Joint poles across links").
+  bool joint_poles = true;
   JointPolesOptions joint;
 };
 

@@ -19,10 +19,13 @@
 // Jacobian with the amplitudes projected out, inflated for lag-1 correlated residuals): one per
 // pole, shared by every link that reads that pole.
 //
-// Measured on the synthetic bench (bench/identification_on_synth.sh, identify with
-// --joint-poles; numbers in the commit that added this): pooled damping errors halve, but a
-// capture's links then share one or two values, so one merged pair of close poles (BIC keeps
-// fewer modes on noisy records) moves every link of that capture together. Hence off by default.
+// Merged poles: BIC on the components may take two close modes for one pole, so every pole is
+// offered split in two and refined on every link; the split is kept when the joint BIC falls
+// (SplitMergedPoles in joint_poles.cc).
+//
+// Measured on the synthetic bench (docs/identification.md, "Joint poles across links"): with a
+// tracker's error the pooled damping error is half that of per-link fits or less, so `identify`
+// reads the links this way by default (`--per-link` turns it off).
 
 #include <string>
 #include <vector>
