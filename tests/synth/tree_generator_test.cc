@@ -48,6 +48,16 @@ bool IsForkStem(const Tree& tree, const SpeciesParams& p, const Branch& b) {
          b.parent_node == static_cast<int>(tree.trunk().nodes.size()) - 1;
 }
 
+// The lowest node of any branch but the trunk (which starts on the ground).
+double LowestNodeOffTheTrunk(const Tree& tree) {
+  double lowest = 1e9;
+  for (const Branch& b : tree.branches) {
+    if (b.is_trunk()) continue;
+    for (const Node& n : b.nodes) lowest = std::min(lowest, n.position.z());
+  }
+  return lowest;
+}
+
 struct Case {
   std::string species;
   uint64_t seed;
@@ -113,6 +123,11 @@ TEST_P(EveryPreset, NodesAreEvenlySpacedAndEveryBranchHasThree) {
   }
   EXPECT_GE(shortest, 0.025);
   EXPECT_LE(longest, 0.085);
+}
+
+TEST_P(EveryPreset, NothingGrowsBelowTheGround) {
+  EXPECT_GE(LowestNodeOffTheTrunk(tree()),
+            GeneratorOptions{}.min_ground_clearance_m * result_.scale - 1e-9);
 }
 
 TEST_P(EveryPreset, BranchesBendSmoothly) {
@@ -380,6 +395,38 @@ TEST(TreeGenerator, ClearanceCheckRedrawsAndDrops) {
   EXPECT_LT(crowded.tree.size(), free.tree.size());
 }
 
+TEST(TreeGenerator, DroopingShootsStopAboveTheGround) {
+  // acer_palmatum with twigs drooping hard (and a low fork): without the ground their tips would
+  // grow far below it.
+  SpeciesParams p = SpeciesPreset("acer_palmatum");
+  p.trunk.length_fraction = 0.15;
+  for (LevelParams& level : p.levels) level.shape.tropism_tip_per_m = -6.0;
+  GeneratorOptions options;
+  options.min_ground_clearance_m = 0.1;
+  int stopped = 0;
+  for (const uint64_t seed : {1, 2, 3}) {
+    const TreeGenerationResult r = GrowTree(p, seed, options);
+    EXPECT_TRUE(FindProblems(r.tree).empty()) << "seed " << seed;
+    // At the clearance, up to the scale to the drawn height.
+    EXPECT_GE(LowestNodeOffTheTrunk(r.tree), 0.1 * r.scale - 1e-9) << "seed " << seed;
+    stopped += r.stopped_at_ground;
+    // A stopped branch keeps its node spacing (the presets' 2.5-8.5 cm, here times the scale:
+    // drooping tips lower the top) and at least 3 nodes.
+    for (const Branch& b : r.tree.branches) {
+      ASSERT_GE(b.nodes.size(), 3u);
+      for (size_t i = 1; i < b.nodes.size(); ++i) {
+        const double d = (b.nodes[i].position - b.nodes[i - 1].position).norm();
+        EXPECT_GE(d, 0.025 * r.scale);
+        EXPECT_LE(d, 0.085 * r.scale);
+      }
+    }
+  }
+  EXPECT_GT(stopped, 10);
+  // At clearance 0 nothing goes below the ground either.
+  options.min_ground_clearance_m = 0.0;
+  EXPECT_GE(LowestNodeOffTheTrunk(GrowTree(p, 1, options).tree), 0.0);
+}
+
 TEST(TreeGenerator, BadInputsAreRefused) {
   SpeciesParams p = SpeciesPreset("magnolia");
   p.height_m = std::numeric_limits<double>::quiet_NaN();
@@ -395,6 +442,9 @@ TEST(TreeGenerator, BadInputsAreRefused) {
   EXPECT_THROW(GenerateTree(SpeciesPreset("magnolia"), 1, options), InputError);
   options = GeneratorOptions{};
   options.clearance_radii = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(GenerateTree(SpeciesPreset("magnolia"), 1, options), InputError);
+  options = GeneratorOptions{};
+  options.min_ground_clearance_m = -0.1;
   EXPECT_THROW(GenerateTree(SpeciesPreset("magnolia"), 1, options), InputError);
 }
 

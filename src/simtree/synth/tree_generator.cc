@@ -179,7 +179,7 @@ class Grower {
     height_ = species_.height_m * (1.0 + species_.height_spread * rng_.Symmetric());
     const double radius_spread = 1.0 + species_.trunk_radius_spread * rng_.Symmetric();
     // While growing, the clearance check guesses radii from a trunk of a typical tree of this
-    // height; the final trunk radius follows the finished tree's longest path (header, step 8).
+    // height; the final trunk radius follows the finished tree's longest path (header, step 9).
     estimated_trunk_radius_ =
         species_.trunk_base_radius_m * std::pow(height_ / species_.height_m, 1.5) * radius_spread;
     GrowTrunk();
@@ -205,6 +205,7 @@ class Grower {
     result.redrawn_directions = redrawn_;
     result.dropped_crowded = dropped_crowded_;
     result.dropped_budget = dropped_budget_;
+    result.stopped_at_ground = stopped_at_ground_;
     result.branches_per_level.assign(species_.branching_levels() + 1, 0);
     for (const Axis& a : axes_) ++result.branches_per_level[a.level];
     return result;
@@ -383,12 +384,16 @@ class Grower {
           c.azimuth + DegToRad(species_.phyllotaxis_jitter_deg) * rng_.Symmetric();
       std::vector<Vec3> points = IntegrateAxis(base, DirectionFrom(c, angle, azimuth), c.length,
                                                segments, level.shape, waves);
+      const size_t whole = points.size();
+      StopAboveGround(points);
+      if (points.size() < 3) continue;  // into the ground at once: drawn again (step 6)
       if (!Crowds(c, points, radius, angle)) {
         Axis axis;
         axis.parent = c.parent;
         axis.parent_node = c.parent_node;
         axis.level = c.level;
-        axis.length = c.length;
+        axis.length = c.length * (points.size() - 1) / (whole - 1);
+        if (points.size() < whole) ++stopped_at_ground_;
         axis.estimated_radius = radius;
         axis.points = std::move(points);
         AddAxis(std::move(axis));
@@ -396,6 +401,15 @@ class Grower {
       }
     }
     ++dropped_crowded_;
+  }
+
+  // Cuts a drooping axis at its last node at least min_ground_clearance_m above the ground (the
+  // header, step 6): a shoot does not grow into the ground.
+  void StopAboveGround(std::vector<Vec3>& points) const {
+    const auto below = std::find_if(points.begin() + 1, points.end(), [&](const Vec3& p) {
+      return p.z() < options_.min_ground_clearance_m;
+    });
+    points.erase(below, points.end());
   }
 
   // True when the new axis comes too close to an axis grown before (see the header, step 5).
@@ -470,7 +484,7 @@ class Grower {
     return longest;
   }
 
-  // The finished Tree with pipe-model radii (header, step 8).
+  // The finished Tree with pipe-model radii (header, step 9).
   Tree BuildTree(double* tip_radius) const {
     const int count = static_cast<int>(axes_.size());
     const double n = species_.pipe_exponent;
@@ -529,6 +543,7 @@ class Grower {
   int redrawn_ = 0;
   int dropped_crowded_ = 0;
   int dropped_budget_ = 0;
+  int stopped_at_ground_ = 0;
 };
 
 }  // namespace
@@ -537,7 +552,7 @@ TreeGenerationResult GrowTree(const SpeciesParams& species, uint64_t seed,
                               const GeneratorOptions& options) {
   ValidateSpecies(species, species.name.empty() ? "species" : "species " + species.name);
   if (options.max_branches < 1 || options.max_nodes < 3 || !(options.clearance_radii >= 0) ||
-      !(options.min_clearance_m >= 0)) {
+      !(options.min_clearance_m >= 0) || !(options.min_ground_clearance_m >= 0)) {
     throw InputError("GeneratorOptions", "",
                      "expected max_branches >= 1, max_nodes >= 3 and non-negative clearances");
   }

@@ -34,17 +34,22 @@
 //     finished tree), so the check estimates a base radius trunk radius x (length / height)^1.3
 //     tapering to a quarter at the tip, with the trunk radius of a typical tree of the drawn
 //     height, trunk_base_radius_m (H / height_m)^1.5 (+- trunk_radius_spread).
-//  6. Budget: when a level's candidates would pass max_branches or max_nodes, its shortest
+//  6. The ground: a drooping axis that would come down to within min_ground_clearance_m of the
+//     ground stops at its last node above that (its tip does not grow into the ground); a
+//     direction that leaves fewer than 3 nodes is drawn again, as a crowded one is (step 5).
+//     Checked before the clearance test, on the unscaled tree (step 8 moves the clearance by the
+//     few percent of its scale).
+//  7. Budget: when a level's candidates would pass max_branches or max_nodes, its shortest
 //     candidates are not grown (suppressed shoots).
-//  7. The tree is scaled about the origin so its highest node is exactly the drawn height.
-//  8. Radii: the pipe model from the tips down. Every tip counts 1, each metre of axis
+//  8. The tree is scaled about the origin so its highest node is exactly the drawn height.
+//  9. Radii: the pipe model from the tips down. Every tip counts 1, each metre of axis
 //     shed_shoots_per_m more, a fork adds its children: P_node = P_next + shed x segment +
 //     sum P_child, r = c P^(1/n), and never below min_twig_radius_m. c is chosen so the trunk
 //     base has the radius of elastic similarity on the finished tree's longest path from the
 //     base to a tip (species.h): the stem carries the crown it grew, not a drawn one. So r^n at a
 //     fork is the sum of the children's r^n plus the continuing axis's r^n (to the shed-shoot
 //     term), and radii grow monotonically to the base.
-//  9. Levels (AssignLevels), frames (ComputeFrames), metadata, then ValidateTree.
+// 10. Levels (AssignLevels), frames (ComputeFrames), metadata, then ValidateTree.
 
 #include <cstdint>
 #include <vector>
@@ -60,17 +65,19 @@ struct GeneratorOptions {
   double clearance_radii = 2.0;
   double min_clearance_m = 0.012;
   int max_direction_tries = 6;
+  double min_ground_clearance_m = 0.05;  // step 6
 };
 
 struct TreeGenerationResult {
   Tree tree;
   double height_m = 0.0;                // the drawn height, which the tree has exactly
-  double trunk_base_radius_m = 0.0;     // the trunk base radius (step 8)
-  double longest_path_m = 0.0;          // longest path from the trunk base to a tip (step 8)
-  double scale = 1.0;                   // uniform scale applied in step 7
+  double trunk_base_radius_m = 0.0;     // the trunk base radius (step 9)
+  double longest_path_m = 0.0;          // longest path from the trunk base to a tip (step 9)
+  double scale = 1.0;                   // uniform scale applied in step 8
   double tip_radius_m = 0.0;            // c: radius of a lone tip before the min_twig_radius floor
   int redrawn_directions = 0;           // directions drawn again by the clearance check
   int dropped_crowded = 0;              // buds dropped after max_direction_tries
+  int stopped_at_ground = 0;            // axes that stopped short at the ground (step 6)
   int dropped_budget = 0;               // candidates dropped by max_branches / max_nodes
   std::vector<int> branches_per_level;  // index = level
 };
