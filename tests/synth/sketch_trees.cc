@@ -8,6 +8,7 @@
 // each species' whole JSON (a starting point for a custom species). --fem adds the FEM oracle's
 // first natural frequency and its damping ratio to each line (a whole-tree FEM: seconds a tree).
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -116,16 +117,24 @@ int main(int argc, char** argv) {
         for (const int n : result.branches_per_level) per_level += std::to_string(n) + " ";
         int thick = 0;
         for (const Branch& b : tree.branches) thick += b.nodes.front().radius >= 0.01;
+        // The lowest node off the trunk (the trunk starts at the ground): below 0, under ground.
+        double lowest = hi.z();
+        for (const Branch& b : tree.branches) {
+          if (b.parent < 0) continue;
+          for (const Node& n : b.nodes) lowest = std::min(lowest, n.position.z());
+        }
         std::printf(
             "%s seed %llu: height %.2f m, width %.2f x %.2f m, longest path %.2f m, trunk r "
             "%.1f mm, tip r %.2f mm, scale %.3f, branches %d (per level %s), >=1cm %d, nodes %d, "
-            "redrawn %d, crowded %d, budget %d, markers %zu (per level %s), %.0f ms%s\n",
+            "lowest node off the trunk %.3f m (%d stopped at the ground), redrawn %d, crowded %d, "
+            "budget %d, markers %zu "
+            "(per level %s), %.0f ms%s\n",
             params.name.c_str(), static_cast<unsigned long long>(seed), hi.z(), hi.x() - lo.x(),
             hi.y() - lo.y(), result.longest_path_m, 1000 * tree.trunk().base().radius,
             1000 * result.tip_radius_m, result.scale, tree.size(), per_level.c_str(), thick,
-            tree.NodeCount(), result.redrawn_directions, result.dropped_crowded,
-            result.dropped_budget, tree.markers.size(), marker_levels.c_str(), ms,
-            fem ? FirstMode(tree, params).c_str() : "");
+            tree.NodeCount(), lowest, result.stopped_at_ground, result.redrawn_directions,
+            result.dropped_crowded, result.dropped_budget, tree.markers.size(),
+            marker_levels.c_str(), ms, fem ? FirstMode(tree, params).c_str() : "");
         const std::string stem = params.name + "_seed" + std::to_string(seed);
         WritePng(SketchTree(tree, sketch), out / (stem + ".png"));
         MeshWriteOptions mesh_options;
