@@ -9,6 +9,7 @@
 
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/parallel_reduce.h>
+#include <Eigen/SVD>
 
 namespace simtree {
 namespace {
@@ -97,6 +98,85 @@ void AddPlane(const PlaneConstraint& plane, const Eigen::Isometry3d& transform, 
   }
 }
 
+// AlignMedialAxes with the rotation: weighted point-to-point fits (Kabsch) of the matched
+// medial points, stage by stage.
+MedialShiftResult AlignMedialAxesRigid(const PointCloud& source_medial,
+                                       const PointCloud& target_medial,
+                                       const KDTreeFlann& target_tree,
+                                       const Eigen::Isometry3d& initial,
+                                       const MedialShiftOptions& options) {
+  MedialShiftResult result;
+  result.target_from_source = initial;
+  struct Sum {
+    Eigen::Vector3d source = Eigen::Vector3d::Zero(), target = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d cross = Eigen::Matrix3d::Zero();  // sum of w p q^T
+    double weight = 0.0;
+    int count = 0;
+  };
+  Eigen::Isometry3d transform = initial;
+  int matches = 0;
+  for (double distance : options.max_distances_m) {
+    const double max_squared = distance * distance;
+    const double k = distance / 3.0;
+    for (int iteration = 0; iteration < options.iterations_per_stage; ++iteration) {
+      const Sum sum = oneapi::tbb::parallel_deterministic_reduce(
+          oneapi::tbb::blocked_range<size_t>(0, source_medial.points_.size(), 512), Sum{},
+          [&](const oneapi::tbb::blocked_range<size_t>& range, Sum acc) {
+            std::vector<int> index(1);
+            std::vector<double> squared(1);
+            for (size_t i = range.begin(); i != range.end(); ++i) {
+              const Eigen::Vector3d p = transform * source_medial.points_[i];
+              if (target_tree.SearchKNN(p, 1, index, squared) < 1 || squared[0] > max_squared) {
+                continue;
+              }
+              const Eigen::Vector3d& q = target_medial.points_[index[0]];
+              const double d = std::sqrt(squared[0]);
+              const double w = d <= k ? 1.0 : k / d;
+              acc.source += w * p;
+              acc.target += w * q;
+              acc.cross += w * p * q.transpose();
+              acc.weight += w;
+              ++acc.count;
+            }
+            return acc;
+          },
+          [](Sum a, const Sum& b) {
+            a.source += b.source;
+            a.target += b.target;
+            a.cross += b.cross;
+            a.weight += b.weight;
+            a.count += b.count;
+            return a;
+          });
+      matches = sum.count;
+      if (sum.count < options.min_matches || sum.weight <= 0) break;
+      const Eigen::Vector3d ps = sum.source / sum.weight, qs = sum.target / sum.weight;
+      const Eigen::Matrix3d h = sum.cross - sum.weight * ps * qs.transpose();
+      const Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
+      Eigen::Matrix3d fix = Eigen::Matrix3d::Identity();
+      fix(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1.0 : 1.0;
+      Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+      step.linear() = svd.matrixV() * fix * svd.matrixU().transpose();
+      step.translation() = qs - step.linear() * ps;
+      if (!step.matrix().allFinite()) break;
+      transform = step * transform;
+      if (step.translation().norm() < options.min_step_m &&
+          Eigen::AngleAxisd(step.linear()).angle() < options.min_step_m) {
+        break;
+      }
+    }
+  }
+  result.matches = matches;
+  if (matches < options.min_matches || !transform.matrix().allFinite()) return result;
+  // How far the source's medial points' centre moved.
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : source_medial.points_) centre += p;
+  centre /= static_cast<double>(source_medial.points_.size());
+  result.shift = transform * centre - initial * centre;
+  result.target_from_source = transform;
+  return result;
+}
+
 }  // namespace
 
 IcpResult GatedPointToPlaneIcp(const PointCloud& source, const PointCloud& target,
@@ -149,8 +229,12 @@ IcpResult GatedPointToPlaneIcp(const PointCloud& source, const PointCloud& targe
                 }
               }
               if (match < 0) continue;
-              const Eigen::Vector3d& n = target.normals_[index[match]];
               const Eigen::Vector3d& q = target.points_[index[match]];
+              // Half the normals' sum: at most unit length, so the Huber scale holds for both.
+              const Eigen::Vector3d n =
+                  options.objective == IcpObjective::kSymmetric
+                      ? Eigen::Vector3d(0.5 * (normal + target.normals_[index[match]]))
+                      : target.normals_[index[match]];
               const double r = (p - q).dot(n);
               // Huber weight at a share of the stage distance.
               const double k = distance * options.huber_share;
@@ -203,6 +287,9 @@ MedialShiftResult AlignMedialAxes(const PointCloud& source_medial, const PointCl
   MedialShiftResult result;
   result.target_from_source = initial;
   if (source_medial.points_.empty() || target_medial.points_.empty()) return result;
+  if (options.rotation) {
+    return AlignMedialAxesRigid(source_medial, target_medial, target_tree, initial, options);
+  }
   struct Sum {
     Eigen::Vector3d offset = Eigen::Vector3d::Zero();
     double weight = 0.0;

@@ -20,7 +20,18 @@
 
 namespace simtree {
 
+// What a correspondence's residual is measured along.
+enum class IcpObjective {
+  kPointToPlane,  // the target point's normal
+  // The sum of both points' normals (Rusinkiewicz 2019, "A symmetric objective function for
+  // ICP"): two points on one circle (a branch's cross-section) have a zero residual wherever on
+  // it each lies, so the two one-sided shells of a branch seen from opposite sides are not pulled
+  // together; pairs whose normals disagree weigh less (opposite normals: nothing).
+  kSymmetric,
+};
+
 struct GatedIcpOptions {
+  IcpObjective objective = IcpObjective::kPointToPlane;
   // One stage per distance (metres), largest first; each runs up to `iterations_per_stage`.
   std::vector<double> max_distances_m = {0.06, 0.03, 0.015};
   int iterations_per_stage = 12;
@@ -85,12 +96,13 @@ IcpResult GatedPointToPlaneIcp(
     const GatedIcpOptions& options = {}, const std::vector<float>* source_planarity = nullptr,
     const std::vector<float>* target_planarity = nullptr, const IcpPriors& priors = {});
 
-// The last step of fine registration: the shift (rotation kept) that brings the source's medial
-// points (registration_view.h) onto the target's. Surface ICP cannot find it when the views are
-// far apart: each sees its own half of every branch, the halves barely overlap (grazing surfaces
-// drop out), and ICP pulls the two shells together, moving the source towards the target camera
-// by about half a branch radius (measured: 15-30 mm at 144-180 deg). The branch axes both views
-// agree on.
+// The last step of fine registration: the shift (rotation kept), or with `rotation` the rigid
+// move, that brings the source's medial points (registration_view.h) onto the target's. Surface
+// ICP cannot find it when the views are far apart: each sees its own half of every branch, the
+// halves barely overlap (grazing surfaces drop out), and ICP pulls the two shells together,
+// moving the source towards the target camera by about half a branch radius (measured: 15-30 mm
+// at 144-180 deg), the thick lower branches more than the twigs (a lean). The branch axes both
+// views agree on.
 struct MedialShiftOptions {
   // One stage per distance (metres), largest first; each runs up to `iterations_per_stage`.
   std::vector<double> max_distances_m = {0.04, 0.02};
@@ -98,10 +110,14 @@ struct MedialShiftOptions {
   double min_step_m = 1e-4;
   // The shift is rejected (the start kept) unless at least this many source points match.
   int min_matches = 30;
+  // Fit the rotation too (a rigid, point-to-point fit of the medial points; Huber-weighted).
+  bool rotation = false;
 };
 struct MedialShiftResult {
   Eigen::Isometry3d target_from_source = Eigen::Isometry3d::Identity();
-  Eigen::Vector3d shift = Eigen::Vector3d::Zero();  // applied after the start, target frame
+  // Applied after the start, target frame (with `rotation`: how far the matched points' centre
+  // moved).
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
   int matches = 0;
 };
 MedialShiftResult AlignMedialAxes(const open3d::geometry::PointCloud& source_medial,
