@@ -23,6 +23,21 @@ struct MedialProjectionOptions {
   // Pull towards the point itself, relative to the neighbour count: keeps flat patches (whose
   // normal lines are parallel and meet nowhere) in place.
   double regularisation = 0.005;
+  // A branch narrower than the neighbourhood is long (across its axis at most
+  // `silhouette_elongation` of the extent along it, and the points on both its edges, in the
+  // cross-section at the point, within `silhouette_containment` of the neighbourhood's reach
+  // from it, so that they are the branch's edges and not where the neighbourhood ends) takes
+  // its axis point from its silhouette: the width across the axis and the line of sight, which one
+  // view sees whole, gives the radius r and the axis's place across; the axis lies r behind the
+  // surface point there, less for a point off the middle (a circle). The normal lines' meeting
+  // point lags on such branches: normals averaged over a neighbourhood wider than the branch turn
+  // towards the camera, so their lines barely meet and the pull towards the point itself wins
+  // (each view's axis points of 1-4 cm branches sat 5-10 mm towards its camera). Needs the
+  // camera at the cloud's origin. False: the normal lines everywhere.
+  bool silhouette = false;
+  double silhouette_elongation = 0.5;
+  double silhouette_containment = 0.6;
+  int silhouette_max_neighbours = 120;
 };
 
 // The projected positions of `indices` of `cloud` (which needs normals oriented to the camera);
