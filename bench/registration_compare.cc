@@ -171,7 +171,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> captures;
   fs::path cache = fs::temp_directory_path() / "simtree_registration_bench";
   bool skip_baselines = false, skip_table1 = false, ablations = false, fine_study = false;
-  bool views_only = false, skip_paper = false;
+  bool views_only = false, skip_paper = false, fine_from_truth = false, old_medial = false;
   double screen_below_overlap = PairOptions{}.screen_below_overlap;
   std::vector<std::string> only_pairs;
   app.add_option("--synth-seeds", synth_seeds,
@@ -200,6 +200,12 @@ int main(int argc, char** argv) {
   app.add_flag("--ablations", ablations, "Ours with each prior left out in turn");
   app.add_flag("--fine-study", fine_study,
                "Fine stages (ours, ours without priors, Open3D's ICP) from the same starts");
+  app.add_flag("--fine-from-truth", fine_from_truth,
+               "Only ours' fine stages (variants of it) from the true pose: no full registration, "
+               "no coarse start, no Open3D ICP");
+  app.add_flag("--old-medial", old_medial,
+               "Ours as before round 7: axis points from the normal lines only, the medial fit a "
+               "shift (no rotation)");
   app.add_flag("--views", views_only,
                "Each view's trunk and key region in the world frame (by the truth), no pairs");
   app.add_option("--json", json_path, "Every pair's outcome as JSON");
@@ -233,6 +239,11 @@ int main(int argc, char** argv) {
 
   PairOptions default_options;
   default_options.screen_below_overlap = screen_below_overlap;
+  RegistrationViewOptions view_options;
+  if (old_medial) {
+    default_options.medial.rotation = false;
+    view_options.projection.silhouette = false;
+  }
   std::vector<Outcome> outcomes;
   std::deque<PairResult> ours_results;  // what ours' checks measured, for the JSON
   auto record = [&](const Scene& scene, size_t s, size_t t, const std::string& method,
@@ -294,7 +305,7 @@ int main(int argc, char** argv) {
       return views;
     };
     std::vector<double> prep_seconds;
-    const std::vector<RegistrationView> ours = prepare({}, prep_seconds);
+    const std::vector<RegistrationView> ours = prepare(view_options, prep_seconds);
     if (views_only) {
       // A trunk or key region found wrong in one view stands out: the others agree in the world.
       for (size_t v = 0; v < n; ++v) {
@@ -343,7 +354,7 @@ int main(int argc, char** argv) {
     paper_options.up_prior = paper_options.center_prior = paper_options.snap_to_priors = false;
     paper_options.trunk_axis_weight = paper_options.ground_weight = 0.0;
     paper_options.retry_other_key_regions = paper_options.retry_with_shifts = false;
-    for (const auto& [s, t] : pairs) {
+    for (const auto& [s, t] : fine_from_truth ? decltype(pairs){} : pairs) {
       const PairResult& r =
           ours_results.emplace_back(RegisterPair(ours[s], ours[t], default_options));
       record(scene, s, t, "ours", r.target_from_source,
@@ -379,6 +390,54 @@ int main(int argc, char** argv) {
 
     // The fine stage isolated: ours' and the baselines' ICP from the same starts (the truth,
     // and ours' coarse result), so a difference at the tree is the fine stage's own.
+    if (fine_from_truth) {
+      // Ours' fine stage and variants of it from the true pose (docs/registration.md, "The tilt
+      // that remains"): what is left of the error there is the fine stage's own bias.
+      RegistrationViewOptions normal_lines_options = view_options;
+      normal_lines_options.projection.silhouette = false;
+      std::vector<double> unused;
+      const std::vector<RegistrationView> normal_lines = prepare(normal_lines_options, unused);
+      struct Variant {
+        std::string name;
+        PairOptions options;
+        const std::vector<RegistrationView>* views;
+      };
+      std::vector<Variant> fine_variants = {{"", default_options, &ours}};
+      auto add = [&](const std::string& name, bool silhouette, auto change) {
+        PairOptions o = default_options;
+        change(o);
+        fine_variants.push_back({", " + name, o, silhouette ? &ours : &normal_lines});
+      };
+      add("one way", true, [](PairOptions& o) { o.symmetric_fine = false; });
+      add("symmetric objective", true,
+          [](PairOptions& o) { o.icp.objective = IcpObjective::kSymmetric; });
+      add("medial shift only", true, [](PairOptions& o) { o.medial.rotation = false; });
+      add("normal-line axis points", false, [](PairOptions&) {});
+      add("before (normal-line axis points, medial shift only)", false,
+          [](PairOptions& o) { o.medial.rotation = false; });
+      add("before, one way", false, [](PairOptions& o) {
+        o.medial.rotation = false;
+        o.symmetric_fine = false;
+      });
+      add("before, symmetric objective", false, [](PairOptions& o) {
+        o.medial.rotation = false;
+        o.icp.objective = IcpObjective::kSymmetric;
+      });
+      for (const auto& [s, t] : pairs) {
+        if (!ours[s].CanRegister() || !ours[t].CanRegister()) continue;
+        const Eigen::Isometry3d truth =
+            scene.poses[t].world_from_camera.inverse() * scene.poses[s].world_from_camera;
+        for (const Variant& v : fine_variants) {
+          const RegistrationView& vs = (*v.views)[s];
+          const RegistrationView& vt = (*v.views)[t];
+          const auto begin = Clock::now();
+          FineResult fine = RefinePair(vs, vt, truth, v.options);
+          if (v.options.symmetric_fine) fine = AverageWithReverse(vs, vt, fine, v.options);
+          record(scene, s, t, "ours' fine" + v.name + " from truth", fine.icp.target_from_source,
+                 Since(begin), ours[s], ours[t], true);
+        }
+      }
+    }
     if (fine_study) {
       PairOptions coarse_only = default_options;
       coarse_only.run_icp = false;
