@@ -106,8 +106,10 @@ TEST(RegisterCli, BadViewsAreFlaggedNotMerged) {
 
 TEST(RegisterCli, AnAllNanCloudFileIsFlaggedByNameAndTheOthersRegister) {
   // A folder of point clouds (the cleaned views of the quick capture) in which view_02 holds
-  // only NaN coordinates: that view is left out with its file named, the others go on (here two
-  // of the three register: the cleaned clouds are thinned once more when read as clouds).
+  // only NaN coordinates: that view is left out with its file named, the others go on.
+  // --voxel-factor 1: the cleaned clouds are not thinned a second time when read as clouds (at
+  // the default 2.5 spacings this sparse capture's right pairs hold 36-38% of their skeletons
+  // within the SAC-IA distance and are refused; docs/registration.md, "Known weaknesses").
   const fs::path tmp = test::TempDir();
   const fs::path clean = tmp / "clean";
   auto r = test::RunCli("-q preprocess \"" + QuickCapture().string() + "\" --out \"" +
@@ -123,7 +125,8 @@ TEST(RegisterCli, AnAllNanCloudFileIsFlaggedByNameAndTheOthersRegister) {
   test::WriteText(clouds / "view_02.xyz", nan_lines);
 
   const fs::path out = tmp / "reg";
-  r = test::RunCli("register \"" + clouds.string() + "\" --out \"" + out.string() + "\"");
+  r = test::RunCli("register \"" + clouds.string() + "\" --voxel-factor 1 --out \"" +
+                   out.string() + "\"");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_THAT(r.output, HasSubstr("view_02.xyz: every point has NaN or infinite coordinates"));
   EXPECT_THAT(r.output, Not(HasSubstr("internal error")));
