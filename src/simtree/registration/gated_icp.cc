@@ -98,13 +98,13 @@ void AddPlane(const PlaneConstraint& plane, const Eigen::Isometry3d& transform, 
   }
 }
 
-// AlignMedialAxes with the rotation: weighted point-to-point fits (Kabsch) of the matched
-// medial points, stage by stage.
-MedialShiftResult AlignMedialAxesRigid(const PointCloud& source_medial,
-                                       const PointCloud& target_medial,
-                                       const KDTreeFlann& target_tree,
-                                       const Eigen::Isometry3d& initial,
-                                       const MedialShiftOptions& options) {
+// AlignMedialAxes: stage by stage, each source medial point matched to the nearest target medial
+// point within the stage's distance (Huber-weighted: medial points scatter across their axes),
+// then the weighted fit of the matches: a point-to-point rigid fit (Kabsch) with
+// options.rotation, else the mean offset alone.
+MedialShiftResult FitMedialAxes(const PointCloud& source_medial, const PointCloud& target_medial,
+                                const KDTreeFlann& target_tree, const Eigen::Isometry3d& initial,
+                                const MedialShiftOptions& options) {
   MedialShiftResult result;
   result.target_from_source = initial;
   struct Sum {
@@ -151,12 +151,14 @@ MedialShiftResult AlignMedialAxesRigid(const PointCloud& source_medial,
       matches = sum.count;
       if (sum.count < options.min_matches || sum.weight <= 0) break;
       const Eigen::Vector3d ps = sum.source / sum.weight, qs = sum.target / sum.weight;
-      const Eigen::Matrix3d h = sum.cross - sum.weight * ps * qs.transpose();
-      const Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
-      Eigen::Matrix3d fix = Eigen::Matrix3d::Identity();
-      fix(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1.0 : 1.0;
       Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
-      step.linear() = svd.matrixV() * fix * svd.matrixU().transpose();
+      if (options.rotation) {
+        const Eigen::Matrix3d h = sum.cross - sum.weight * ps * qs.transpose();
+        const Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
+        Eigen::Matrix3d fix = Eigen::Matrix3d::Identity();
+        fix(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1.0 : 1.0;
+        step.linear() = svd.matrixV() * fix * svd.matrixU().transpose();
+      }
       step.translation() = qs - step.linear() * ps;
       if (!step.matrix().allFinite()) break;
       transform = step * transform;
@@ -284,60 +286,12 @@ IcpResult GatedPointToPlaneIcp(const PointCloud& source, const PointCloud& targe
 MedialShiftResult AlignMedialAxes(const PointCloud& source_medial, const PointCloud& target_medial,
                                   const KDTreeFlann& target_tree, const Eigen::Isometry3d& initial,
                                   const MedialShiftOptions& options) {
-  MedialShiftResult result;
-  result.target_from_source = initial;
-  if (source_medial.points_.empty() || target_medial.points_.empty()) return result;
-  if (options.rotation) {
-    return AlignMedialAxesRigid(source_medial, target_medial, target_tree, initial, options);
+  if (source_medial.points_.empty() || target_medial.points_.empty()) {
+    MedialShiftResult result;
+    result.target_from_source = initial;
+    return result;
   }
-  struct Sum {
-    Eigen::Vector3d offset = Eigen::Vector3d::Zero();
-    double weight = 0.0;
-    int count = 0;
-  };
-  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
-  int matches = 0;
-  for (double distance : options.max_distances_m) {
-    const double max_squared = distance * distance;
-    const double k = distance / 3.0;  // Huber: medial points scatter across their axes
-    for (int iteration = 0; iteration < options.iterations_per_stage; ++iteration) {
-      const Sum sum = oneapi::tbb::parallel_deterministic_reduce(
-          oneapi::tbb::blocked_range<size_t>(0, source_medial.points_.size(), 512), Sum{},
-          [&](const oneapi::tbb::blocked_range<size_t>& range, Sum acc) {
-            std::vector<int> index(1);
-            std::vector<double> squared(1);
-            for (size_t i = range.begin(); i != range.end(); ++i) {
-              const Eigen::Vector3d p = initial * source_medial.points_[i] + shift;
-              if (target_tree.SearchKNN(p, 1, index, squared) < 1 || squared[0] > max_squared) {
-                continue;
-              }
-              const Eigen::Vector3d offset = target_medial.points_[index[0]] - p;
-              const double d = std::sqrt(squared[0]);
-              const double w = d <= k ? 1.0 : k / d;
-              acc.offset += w * offset;
-              acc.weight += w;
-              ++acc.count;
-            }
-            return acc;
-          },
-          [](Sum a, const Sum& b) {
-            a.offset += b.offset;
-            a.weight += b.weight;
-            a.count += b.count;
-            return a;
-          });
-      matches = sum.count;
-      if (sum.count < options.min_matches || sum.weight <= 0) break;
-      const Eigen::Vector3d step = sum.offset / sum.weight;
-      shift += step;
-      if (step.norm() < options.min_step_m) break;
-    }
-  }
-  result.matches = matches;
-  if (matches < options.min_matches || !shift.allFinite()) return result;
-  result.shift = shift;
-  result.target_from_source.translation() += shift;
-  return result;
+  return FitMedialAxes(source_medial, target_medial, target_tree, initial, options);
 }
 
 Overlap MeasureOverlap(const PointCloud& source, const PointCloud& target,
