@@ -199,7 +199,7 @@ double JointBic(const Refinement& r, int parameters) {
 // the record's frequency resolution (1 / T) either side, all poles refined on every link; the
 // split that lowers the joint BIC most is kept, and the offers repeat until none does or the
 // model holds `max_modes`. A split whose poles come back within `min_split` of each other (relative
-// frequency) found no second mode and is not offered.
+// frequency) found no second mode and is not kept.
 void SplitMergedPoles(const std::vector<LinkSamples>& links, int link_channels, double record_s,
                       const JointPolesOptions& options, Refinement& current,
                       DampedSinusoidFit& fit) {
