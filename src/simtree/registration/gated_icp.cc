@@ -98,87 +98,6 @@ void AddPlane(const PlaneConstraint& plane, const Eigen::Isometry3d& transform, 
   }
 }
 
-// AlignMedialAxes: stage by stage, each source medial point matched to the nearest target medial
-// point within the stage's distance (Huber-weighted: medial points scatter across their axes),
-// then the weighted fit of the matches: a point-to-point rigid fit (Kabsch) with
-// options.rotation, else the mean offset alone.
-MedialShiftResult FitMedialAxes(const PointCloud& source_medial, const PointCloud& target_medial,
-                                const KDTreeFlann& target_tree, const Eigen::Isometry3d& initial,
-                                const MedialShiftOptions& options) {
-  MedialShiftResult result;
-  result.target_from_source = initial;
-  struct Sum {
-    Eigen::Vector3d source = Eigen::Vector3d::Zero(), target = Eigen::Vector3d::Zero();
-    Eigen::Matrix3d cross = Eigen::Matrix3d::Zero();  // sum of w p q^T
-    double weight = 0.0;
-    int count = 0;
-  };
-  Eigen::Isometry3d transform = initial;
-  int matches = 0;
-  for (double distance : options.max_distances_m) {
-    const double max_squared = distance * distance;
-    const double k = distance / 3.0;
-    for (int iteration = 0; iteration < options.iterations_per_stage; ++iteration) {
-      const Sum sum = oneapi::tbb::parallel_deterministic_reduce(
-          oneapi::tbb::blocked_range<size_t>(0, source_medial.points_.size(), 512), Sum{},
-          [&](const oneapi::tbb::blocked_range<size_t>& range, Sum acc) {
-            std::vector<int> index(1);
-            std::vector<double> squared(1);
-            for (size_t i = range.begin(); i != range.end(); ++i) {
-              const Eigen::Vector3d p = transform * source_medial.points_[i];
-              if (target_tree.SearchKNN(p, 1, index, squared) < 1 || squared[0] > max_squared) {
-                continue;
-              }
-              const Eigen::Vector3d& q = target_medial.points_[index[0]];
-              const double d = std::sqrt(squared[0]);
-              const double w = d <= k ? 1.0 : k / d;
-              acc.source += w * p;
-              acc.target += w * q;
-              acc.cross += w * p * q.transpose();
-              acc.weight += w;
-              ++acc.count;
-            }
-            return acc;
-          },
-          [](Sum a, const Sum& b) {
-            a.source += b.source;
-            a.target += b.target;
-            a.cross += b.cross;
-            a.weight += b.weight;
-            a.count += b.count;
-            return a;
-          });
-      matches = sum.count;
-      if (sum.count < options.min_matches || sum.weight <= 0) break;
-      const Eigen::Vector3d ps = sum.source / sum.weight, qs = sum.target / sum.weight;
-      Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
-      if (options.rotation) {
-        const Eigen::Matrix3d h = sum.cross - sum.weight * ps * qs.transpose();
-        const Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
-        Eigen::Matrix3d fix = Eigen::Matrix3d::Identity();
-        fix(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1.0 : 1.0;
-        step.linear() = svd.matrixV() * fix * svd.matrixU().transpose();
-      }
-      step.translation() = qs - step.linear() * ps;
-      if (!step.matrix().allFinite()) break;
-      transform = step * transform;
-      if (step.translation().norm() < options.min_step_m &&
-          Eigen::AngleAxisd(step.linear()).angle() < options.min_step_m) {
-        break;
-      }
-    }
-  }
-  result.matches = matches;
-  if (matches < options.min_matches || !transform.matrix().allFinite()) return result;
-  // How far the source's medial points' centre moved.
-  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& p : source_medial.points_) centre += p;
-  centre /= static_cast<double>(source_medial.points_.size());
-  result.shift = transform * centre - initial * centre;
-  result.target_from_source = transform;
-  return result;
-}
-
 }  // namespace
 
 IcpResult GatedPointToPlaneIcp(const PointCloud& source, const PointCloud& target,
@@ -283,15 +202,86 @@ IcpResult GatedPointToPlaneIcp(const PointCloud& source, const PointCloud& targe
   return result;
 }
 
+// Stage by stage, each source medial point is matched to the nearest target medial point within
+// the stage's distance (Huber-weighted: medial points scatter across their axes), then the
+// weighted fit of the matches: a point-to-point rigid fit (Kabsch) with options.rotation, else
+// the mean offset alone.
 MedialShiftResult AlignMedialAxes(const PointCloud& source_medial, const PointCloud& target_medial,
                                   const KDTreeFlann& target_tree, const Eigen::Isometry3d& initial,
                                   const MedialShiftOptions& options) {
-  if (source_medial.points_.empty() || target_medial.points_.empty()) {
-    MedialShiftResult result;
-    result.target_from_source = initial;
-    return result;
+  MedialShiftResult result;
+  result.target_from_source = initial;
+  if (source_medial.points_.empty() || target_medial.points_.empty()) return result;
+  struct Sum {
+    Eigen::Vector3d source = Eigen::Vector3d::Zero(), target = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d cross = Eigen::Matrix3d::Zero();  // sum of w p q^T
+    double weight = 0.0;
+    int count = 0;
+  };
+  Eigen::Isometry3d transform = initial;
+  int matches = 0;
+  for (double distance : options.max_distances_m) {
+    const double max_squared = distance * distance;
+    const double k = distance / 3.0;
+    for (int iteration = 0; iteration < options.iterations_per_stage; ++iteration) {
+      const Sum sum = oneapi::tbb::parallel_deterministic_reduce(
+          oneapi::tbb::blocked_range<size_t>(0, source_medial.points_.size(), 512), Sum{},
+          [&](const oneapi::tbb::blocked_range<size_t>& range, Sum acc) {
+            std::vector<int> index(1);
+            std::vector<double> squared(1);
+            for (size_t i = range.begin(); i != range.end(); ++i) {
+              const Eigen::Vector3d p = transform * source_medial.points_[i];
+              if (target_tree.SearchKNN(p, 1, index, squared) < 1 || squared[0] > max_squared) {
+                continue;
+              }
+              const Eigen::Vector3d& q = target_medial.points_[index[0]];
+              const double d = std::sqrt(squared[0]);
+              const double w = d <= k ? 1.0 : k / d;
+              acc.source += w * p;
+              acc.target += w * q;
+              acc.cross += w * p * q.transpose();
+              acc.weight += w;
+              ++acc.count;
+            }
+            return acc;
+          },
+          [](Sum a, const Sum& b) {
+            a.source += b.source;
+            a.target += b.target;
+            a.cross += b.cross;
+            a.weight += b.weight;
+            a.count += b.count;
+            return a;
+          });
+      matches = sum.count;
+      if (sum.count < options.min_matches || sum.weight <= 0) break;
+      const Eigen::Vector3d ps = sum.source / sum.weight, qs = sum.target / sum.weight;
+      Eigen::Isometry3d step = Eigen::Isometry3d::Identity();
+      if (options.rotation) {
+        const Eigen::Matrix3d h = sum.cross - sum.weight * ps * qs.transpose();
+        const Eigen::JacobiSVD<Eigen::Matrix3d> svd(h, Eigen::ComputeFullU | Eigen::ComputeFullV);
+        Eigen::Matrix3d fix = Eigen::Matrix3d::Identity();
+        fix(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0 ? -1.0 : 1.0;
+        step.linear() = svd.matrixV() * fix * svd.matrixU().transpose();
+      }
+      step.translation() = qs - step.linear() * ps;
+      if (!step.matrix().allFinite()) break;
+      transform = step * transform;
+      if (step.translation().norm() < options.min_step_m &&
+          Eigen::AngleAxisd(step.linear()).angle() < options.min_step_m) {
+        break;
+      }
+    }
   }
-  return FitMedialAxes(source_medial, target_medial, target_tree, initial, options);
+  result.matches = matches;
+  if (matches < options.min_matches || !transform.matrix().allFinite()) return result;
+  // How far the source's medial points' centre moved.
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : source_medial.points_) centre += p;
+  centre /= static_cast<double>(source_medial.points_.size());
+  result.shift = transform * centre - initial * centre;
+  result.target_from_source = transform;
+  return result;
 }
 
 Overlap MeasureOverlap(const PointCloud& source, const PointCloud& target,
