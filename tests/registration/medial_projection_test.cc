@@ -11,17 +11,29 @@
 namespace simtree {
 namespace {
 
+// Normals over `radius`, turned towards a camera at the origin, as a view's are.
+void NormalsSeenFromTheOrigin(open3d::geometry::PointCloud& cloud, double radius) {
+  cloud.EstimateNormals(open3d::geometry::KDTreeSearchParamHybrid(radius, 30));
+  cloud.OrientNormalsTowardsCameraLocation(Eigen::Vector3d::Zero());
+}
+
+// The points of `cloud` with low < y < high.
+std::vector<size_t> PointsBetween(const open3d::geometry::PointCloud& cloud, double low,
+                                  double high) {
+  std::vector<size_t> indices;
+  for (size_t i = 0; i < cloud.points_.size(); ++i) {
+    if (cloud.points_[i].y() < high && cloud.points_[i].y() > low) indices.push_back(i);
+  }
+  return indices;
+}
+
 TEST(MedialProjection, HalfCylinderPointsMoveOntoTheAxis) {
   open3d::geometry::PointCloud cloud;
   test::AddTrunk(cloud, 0.0, 2.0, 0.06, 0.6, 0.006, 0.0, 1);
-  cloud.EstimateNormals(open3d::geometry::KDTreeSearchParamHybrid(0.025, 30));
-  cloud.OrientNormalsTowardsCameraLocation(Eigen::Vector3d::Zero());
+  NormalsSeenFromTheOrigin(cloud, 0.025);
   const open3d::geometry::KDTreeFlann tree(cloud);
-  std::vector<size_t> indices;
-  for (size_t i = 0; i < cloud.points_.size(); ++i) {
-    // Away from the ends, whose neighbourhoods are one-sided along the axis.
-    if (cloud.points_[i].y() < 1.1 && cloud.points_[i].y() > 0.7) indices.push_back(i);
-  }
+  // Away from the ends, whose neighbourhoods are one-sided along the axis.
+  const std::vector<size_t> indices = PointsBetween(cloud, 0.7, 1.1);
   const auto projected = ProjectToMedialAxes(cloud, tree, indices);
   double before = 0, after = 0;
   for (size_t k = 0; k < indices.size(); ++k) {
@@ -54,13 +66,9 @@ TEST(MedialProjection, ThinBranchAxisFromItsSilhouetteDoesNotLagTowardsTheCamera
       cloud.points_.push_back(p + noise(rng) * p.normalized());
     }
   }
-  cloud.EstimateNormals(open3d::geometry::KDTreeSearchParamHybrid(0.046, 30));
-  cloud.OrientNormalsTowardsCameraLocation(Eigen::Vector3d::Zero());
+  NormalsSeenFromTheOrigin(cloud, 0.046);
   const open3d::geometry::KDTreeFlann tree(cloud);
-  std::vector<size_t> indices;
-  for (size_t i = 0; i < cloud.points_.size(); ++i) {
-    if (cloud.points_[i].y() < 1.0 && cloud.points_[i].y() > 0.8) indices.push_back(i);
-  }
+  const std::vector<size_t> indices = PointsBetween(cloud, 0.8, 1.0);
   ASSERT_GT(indices.size(), 50u);
   // Towards the camera (at the origin) from the axis, and distance to it, on average.
   const Eigen::Vector3d axis_point(0.3, 0.0, 2.0);
@@ -99,8 +107,7 @@ TEST(MedialProjection, ThickTrunkKeepsTheNormalLinesButAlongItsEdges) {
   // the edges measured worse on the synthetic views.
   open3d::geometry::PointCloud cloud;
   test::AddTrunk(cloud, 0.0, 2.5, 0.12, 0.8, 0.015, 0.0, 1);
-  cloud.EstimateNormals(open3d::geometry::KDTreeSearchParamHybrid(0.046, 30));
-  cloud.OrientNormalsTowardsCameraLocation(Eigen::Vector3d::Zero());
+  NormalsSeenFromTheOrigin(cloud, 0.046);
   const open3d::geometry::KDTreeFlann tree(cloud);
   std::vector<size_t> facing, edges;
   for (size_t i = 0; i < cloud.points_.size(); ++i) {
