@@ -9,6 +9,8 @@
 #include <Eigen/QR>
 #include <Eigen/SVD>
 
+#include "simtree/core/units.h"
+
 namespace simtree {
 namespace {
 
@@ -203,7 +205,7 @@ double JointBic(const Refinement& r, int parameters) {
 void SplitMergedPoles(const std::vector<LinkSamples>& links, int link_channels, double record_s,
                       const JointPolesOptions& options, Refinement& current,
                       DampedSinusoidFit& fit) {
-  constexpr double kTwoPi = 6.283185307179586;
+  const double shift = kTwoPi * 0.25 / record_s;  // rad/s either side of the pole
   double current_bic =
       JointBic(current, JointParameters(static_cast<int>(fit.modes.size()), link_channels));
   while (static_cast<int>(fit.modes.size()) < options.max_modes) {
@@ -214,7 +216,6 @@ void SplitMergedPoles(const std::vector<LinkSamples>& links, int link_channels, 
     for (int k = 0; k < modes; ++k) {
       DampedSinusoidFit trial = fit;
       FittedMode upper = trial.modes[k];
-      const double shift = kTwoPi * 0.25 / record_s;
       trial.modes[k].angular_frequency -= shift;
       upper.angular_frequency += shift;
       if (trial.modes[k].angular_frequency <= 0) continue;
