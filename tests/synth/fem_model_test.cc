@@ -9,6 +9,7 @@
 
 #include "core/tree_fixtures.h"
 #include "simtree/core/error.h"
+#include "simtree/synth/fem_modes.h"
 #include "simtree/synth/fem_response.h"
 #include "synth/fem_test_trees.h"
 
@@ -61,6 +62,57 @@ TEST(FemModel, CantileverTwistAndStretchMatchClosedForm) {
   const double ea = wood.youngs_modulus_pa * kPi * radius * radius;
   EXPECT_NEAR(model.MotionAt(x, 0, length).displacement.dot(axis) / (pull * length / ea), 1.0,
               1e-9);
+}
+
+// On a root plate of stiffness k = ratio EI / L the base tilts by P L / k under a top pull,
+// which adds P L^2 / k to the bending's P L^3 / 3EI; a twist is held as on a clamp.
+TEST(FemModel, RootPlateTiltsUnderAPullAndHoldsATwist) {
+  const WoodProperties wood = test::TestWood();
+  const double length = 2.0, radius = 0.02, load = 10.0, ratio = 1.5;
+  const Tree tree = test::UniformCantilever({0, 0, 1}, length, radius);
+  const FemModel clamped(tree, wood);
+  const FemModel model(tree, wood, {.root_plate_stiffness_ratio = ratio});
+  ASSERT_TRUE(model.has_root_plate());
+  EXPECT_EQ(model.dof_count(), clamped.dof_count() + 2);
+  const double ei = wood.youngs_modulus_pa * test::SecondMoment(radius);
+  const double k = ratio * ei / length;
+  EXPECT_NEAR(model.root_plate_stiffness() / k, 1.0, 1e-12);
+  for (const Eigen::Vector3d& direction : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0),
+                                           Eigen::Vector3d(1, 1, 0).normalized()}) {
+    const Eigen::VectorXd x = SolveStatic(model, model.PointLoad(0, length, load * direction));
+    const double expected = load * std::pow(length, 3) / (3 * ei) + load * length * length / k;
+    EXPECT_NEAR(model.MotionAt(x, 0, length).displacement.dot(direction) / expected, 1.0, 1e-6);
+    // The base tilts but stays where it is.
+    const PointMotion base = model.NodeMap(0).Apply(x);
+    EXPECT_NEAR(base.rotation.dot(Eigen::Vector3d::UnitZ().cross(direction)) / (load * length / k),
+                1.0, 1e-6);
+    EXPECT_EQ(base.displacement.norm(), 0.0);
+    EXPECT_EQ(model.Pose(x).node(0, 0), tree.trunk().base().position);
+  }
+  const double torque = 20.0;
+  const Eigen::Vector3d twist(0, 0, torque);
+  const auto turn = [&](const FemModel& m) {
+    return m
+        .MotionAt(SolveStatic(m, m.PointLoad(0, length, Eigen::Vector3d::Zero(), twist)), 0, length)
+        .rotation.z();
+  };
+  EXPECT_NEAR(turn(model) / turn(clamped), 1.0, 1e-9);
+}
+
+// A stiff stem on a soft root plate rocks as a rigid body: omega^2 = k / (rho A L^3 / 3).
+TEST(FemModel, StiffStemOnASoftRootPlateRocksRigidly) {
+  const WoodProperties wood = test::TestWood();
+  const double length = 2.0, radius = 0.02, ratio = 0.01;
+  const FemModel model(test::UniformCantilever({0, 0, 1}, length, radius), wood,
+                       {.root_plate_stiffness_ratio = ratio});
+  ModesOptions options;
+  options.count = 1;
+  const double f = ComputeModes(model, options).frequency_hz[0];
+  const double inertia = wood.density_kg_m3 * kPi * radius * radius * std::pow(length, 3) / 3;
+  const double rigid = std::sqrt(model.root_plate_stiffness() / inertia) / kTwoPi;
+  // The stem's own bending lowers it by about ratio / 10.
+  EXPECT_LT(f, rigid);
+  EXPECT_GT(f, 0.99 * rigid);
 }
 
 TEST(FemModel, OwnWeightOfAHorizontalCantileverIsQL4Over8EI) {
@@ -176,6 +228,12 @@ TEST(FemModel, BadInputIsAnInputError) {
   EXPECT_THAT(
       test::InputErrorOf([&] { FemModel(test::SmallTree(), wood, {.max_element_length_m = 0}); }),
       HasSubstr("max_element_length_m"));
+  for (double ratio : {-1.0, kNaN}) {
+    EXPECT_THAT(test::InputErrorOf([&] {
+                  FemModel(test::SmallTree(), wood, {.root_plate_stiffness_ratio = ratio});
+                }),
+                HasSubstr("root_plate_stiffness_ratio"));
+  }
   // A branch of coincident nodes only has nothing to bend.
   Tree point = test::Cantilever({0, 0, 0}, {0, 0, 1}, 0.0, 3, [](double) { return 0.01; });
   EXPECT_THAT(test::InputErrorOf([&] { FemModel(point, wood); }), HasSubstr("non-zero length"));

@@ -13,13 +13,11 @@
 namespace simtree {
 namespace {
 
-// Global index of the 12 element degrees of freedom (-1 where clamped).
-std::array<int, 12> ElementDofs(int node_a_dof, int node_b_dof) {
+// Global index of the 12 element degrees of freedom (-1 where held).
+std::array<int, 12> ElementDofs(const std::array<int, 6>& a, const std::array<int, 6>& b) {
   std::array<int, 12> dofs;
-  for (int k = 0; k < 6; ++k) {
-    dofs[k] = node_a_dof < 0 ? -1 : node_a_dof + k;
-    dofs[6 + k] = node_b_dof < 0 ? -1 : node_b_dof + k;
-  }
+  std::copy(a.begin(), a.end(), dofs.begin());
+  std::copy(b.begin(), b.end(), dofs.begin() + 6);
   return dofs;
 }
 
@@ -57,6 +55,12 @@ FemModel::FemModel(const Tree& tree, const WoodProperties& wood, const FemOption
     throw InputError("fem options", "merge_distance_m",
                      fmt::format("expected a length >= 0, got {}", options_.merge_distance_m));
   }
+  if (!std::isfinite(options_.root_plate_stiffness_ratio) ||
+      options_.root_plate_stiffness_ratio < 0) {
+    throw InputError("fem options", "root_plate_stiffness_ratio",
+                     fmt::format("expected a ratio >= 0 (0 clamps the base), got {}",
+                                 options_.root_plate_stiffness_ratio));
+  }
   BuildMesh();
   if (elements_.empty()) {
     throw InputError("tree", "branches", "expected at least one segment of non-zero length");
@@ -69,7 +73,7 @@ void FemModel::BuildMesh() {
   tree_nodes_.assign(branches, {});
   stations_.assign(branches, {});
   first_element_.assign(branches, 0);
-  node_positions_.push_back(tree_.trunk().base().position);  // node 0: the clamped base
+  node_positions_.push_back(tree_.trunk().base().position);  // node 0: the base
   for (const Branch& b : tree_.branches) {
     const int n = static_cast<int>(b.nodes.size());
     std::vector<int>& fem_nodes = tree_nodes_[b.id];
@@ -126,11 +130,12 @@ void FemModel::Assemble() {
       const BeamElement& element = elements_[e];
       const Matrix12d k = element.Stiffness(wood_);
       const Matrix12d m = element.Mass(wood_);
-      const auto dofs = ElementDofs(node_dof(element_nodes_[e][0]), node_dof(element_nodes_[e][1]));
+      const auto dofs =
+          ElementDofs(node_dofs(element_nodes_[e][0]), node_dofs(element_nodes_[e][1]));
       size_t slot = static_cast<size_t>(e) * 144;
       for (int i = 0; i < 12; ++i) {
         for (int j = 0; j < 12; ++j, ++slot) {
-          // Clamped rows and columns become zero entries at (0, 0): summed away harmlessly.
+          // Held rows and columns become zero entries at (0, 0): summed away harmlessly.
           const bool free = dofs[i] >= 0 && dofs[j] >= 0;
           k_entries[slot] = Triplet(free ? dofs[i] : 0, free ? dofs[j] : 0, free ? k(i, j) : 0.0);
           m_entries[slot] = Triplet(free ? dofs[i] : 0, free ? dofs[j] : 0, free ? m(i, j) : 0.0);
@@ -140,6 +145,24 @@ void FemModel::Assemble() {
       element_mass[e] = m(0, 0) + m(0, 6) + m(6, 0) + m(6, 6);
     }
   });
+  if (has_root_plate()) {
+    // k = ratio E I / H of the trunk's base section, on the base's two tilts.
+    const double r = tree_.trunk().base().radius;
+    const double e_base = wood_.youngs_modulus_pa * wood_.StiffnessFactorAt(r);
+    const double second_moment = 0.25 * kPi * r * r * r * r;
+    double height = 0.0;  // of the highest node (the tree's bounds would add the radii)
+    for (const Eigen::Vector3d& p : node_positions_) {
+      height = std::max(height, p.z() - node_positions_[0].z());
+    }
+    if (!(height > 0)) {
+      throw InputError("tree", "trunk",
+                       "expected the tree to rise above its base (a root plate's stiffness "
+                       "scales with the height)");
+    }
+    root_plate_stiffness_ = options_.root_plate_stiffness_ratio * e_base * second_moment / height;
+    const std::array<int, 6> base = node_dofs(0);
+    for (int k : {3, 4}) k_entries.emplace_back(base[k], base[k], root_plate_stiffness_);
+  }
   const int n = dof_count();
   stiffness_.resize(n, n);
   mass_.resize(n, n);
@@ -177,13 +200,23 @@ void FemModel::CheckPoint(int branch, double arc_length, const char* what) const
   }
 }
 
+std::array<int, 6> FemModel::node_dofs(int node) const {
+  std::array<int, 6> dofs;
+  dofs.fill(-1);
+  if (node > 0) {
+    for (int k = 0; k < 6; ++k) dofs[k] = 6 * (node - 1) + k;
+  } else if (has_root_plate()) {
+    dofs[3] = 6 * (node_count() - 1);
+    dofs[4] = dofs[3] + 1;
+  }
+  return dofs;
+}
+
 PointMap FemModel::NodeMap(int node) const {
   PointMap map;
-  const int dof = node_dof(node);
-  for (int k = 0; k < 6; ++k) {
-    map.dofs[k] = dof < 0 ? -1 : dof + k;
-    map.dofs[6 + k] = -1;
-  }
+  map.dofs.fill(-1);
+  const std::array<int, 6> own = node_dofs(node);
+  std::copy(own.begin(), own.end(), map.dofs.begin());
   map.rows.setZero();
   map.rows.leftCols<6>().setIdentity();
   return map;
@@ -194,7 +227,7 @@ PointMap FemModel::PointMapAt(int branch, double arc_length) const {
   const auto [e, xi] = Locate(branch, arc_length);
   if (e < 0) return NodeMap(stations_[branch].front().node);
   PointMap map;
-  map.dofs = ElementDofs(node_dof(element_nodes_[e][0]), node_dof(element_nodes_[e][1]));
+  map.dofs = ElementDofs(node_dofs(element_nodes_[e][0]), node_dofs(element_nodes_[e][1]));
   map.rows = elements_[e].PointOperator(xi);
   return map;
 }
@@ -225,7 +258,7 @@ Eigen::VectorXd FemModel::GravityLoad(const Eigen::Vector3d& gravity) const {
   Eigen::VectorXd f = Eigen::VectorXd::Zero(dof_count());
   for (int e = 0; e < element_count(); ++e) {
     const Vector12d w = elements_[e].Weight(wood_, gravity);
-    const auto dofs = ElementDofs(node_dof(element_nodes_[e][0]), node_dof(element_nodes_[e][1]));
+    const auto dofs = ElementDofs(node_dofs(element_nodes_[e][0]), node_dofs(element_nodes_[e][1]));
     for (int k = 0; k < 12; ++k) {
       if (dofs[k] >= 0) f[dofs[k]] += w[k];
     }

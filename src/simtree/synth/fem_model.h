@@ -1,7 +1,8 @@
 #pragma once
 // The FEM oracle's model of a whole tree: every branch as a chain of 3D Euler-Bernoulli frame
 // elements (fem_beam_element.h), 6 degrees of freedom per node, joined rigidly where a branch
-// starts (a child's first node *is* its parent's node `parent_node`), clamped at the trunk's base.
+// starts (a child's first node *is* its parent's node `parent_node`), held at the trunk's base
+// by the ground: clamped, or on a root plate that tilts against a rotational spring.
 // It is the synthetic bench's truth of how a tree moves, and it shares nothing with the per-branch
 // modal simulator it judges (src/simtree/dynamics/).
 //
@@ -12,9 +13,17 @@
 // circles from the node radii, linearly tapered along each element and integrated exactly.
 //
 // Matrices. Sparse stiffness K and consistent mass M (translational and rotary inertia) over the
-// free degrees of freedom (every node but the clamped base), and Rayleigh damping
-// C = alpha M + beta K from the wood. Degrees of freedom of node n (n >= 1) are
-// 6 (n - 1) + (u_x, u_y, u_z, theta_x, theta_y, theta_z), world axes.
+// free degrees of freedom, and Rayleigh damping C = alpha M + beta K from the wood. Degrees of
+// freedom of node n (n >= 1) are 6 (n - 1) + (u_x, u_y, u_z, theta_x, theta_y, theta_z), world
+// axes. The base (node 0) does not move; on a root plate it tilts (theta_x, theta_y: the last two
+// degrees of freedom) but neither slides, lifts nor turns about the vertical.
+//
+// Root plate. A tree's roots and the soil they hold give a little under a sway, so a clamped
+// base makes every sway mode stiffer than the tree's, while a turn of the crown about the vertical
+// does not tilt the base and is unchanged. The spring is k = ratio E I / H, with E I of the trunk's
+// base section and H the height of the highest node above the base: one ratio means the same on a
+// tree of any size, and at a fixed ratio every frequency scales as sqrt(E). For a uniform stem
+// pulled at its top, the base's tilt gives 3 / (3 + ratio) of the top's deflection.
 //
 // Small displacements: the model is linear about the rest pose, and poses are the rest nodes
 // moved by the displacement (a pull test bends a branch by a few degrees).
@@ -39,6 +48,9 @@ struct FemOptions {
   double max_element_length_m = 0.1;
   // Tree nodes closer than this to the previous node of their branch share its FEM node.
   double merge_distance_m = 1e-6;
+  // The root plate's rotational stiffness over the trunk base's E I / H (see above); 0 clamps
+  // the base.
+  double root_plate_stiffness_ratio = 0.0;
 };
 
 // Displacement and small rotation (rotation vector, radians) at a point, world frame.
@@ -68,7 +80,7 @@ class FemModel {
   const WoodProperties& wood() const { return wood_; }
   const FemOptions& options() const { return options_; }
 
-  int dof_count() const { return 6 * (node_count() - 1); }
+  int dof_count() const { return 6 * (node_count() - 1) + (has_root_plate() ? 2 : 0); }
   int node_count() const { return static_cast<int>(node_positions_.size()); }
   int element_count() const { return static_cast<int>(elements_.size()); }
   const Eigen::SparseMatrix<double>& stiffness() const { return stiffness_; }
@@ -76,11 +88,18 @@ class FemModel {
   const Eigen::SparseMatrix<double>& damping() const { return damping_; }
   // The mass of the wood (kg), every element's integral of rho A.
   double total_mass_kg() const { return total_mass_kg_; }
+  // The base tilts on a root plate (options().root_plate_stiffness_ratio > 0).
+  bool has_root_plate() const { return options_.root_plate_stiffness_ratio > 0; }
+  // The root plate's rotational stiffness (N m / rad); 0 when the base is clamped.
+  double root_plate_stiffness() const { return root_plate_stiffness_; }
 
   // ---- Mesh
   const Eigen::Vector3d& node_position(int node) const { return node_positions_[node]; }
-  // First degree of freedom of a FEM node; -1 for the clamped base (node 0).
+  // First degree of freedom of a FEM node whose six all move; -1 for the base (node 0).
   int node_dof(int node) const { return node == 0 ? -1 : 6 * (node - 1); }
+  // The six degrees of freedom of a FEM node, -1 where held (the base's, but for its tilt on a
+  // root plate).
+  std::array<int, 6> node_dofs(int node) const;
   // The FEM node of node `index` of tree branch `branch`.
   int tree_node(int branch, int index) const { return tree_nodes_[branch][index]; }
   const BeamElement& element(int e) const { return elements_[e]; }
@@ -104,7 +123,7 @@ class FemModel {
   PointMotion MotionAt(const Eigen::Ref<const Eigen::VectorXd>& x, int branch,
                        double arc_length) const;
   PointMap PointMapAt(int branch, double arc_length) const;
-  // The map of a FEM node's own six degrees of freedom (identity rows; all -1 for the base).
+  // The map of a FEM node's own six degrees of freedom (identity rows; node_dofs(node)).
   PointMap NodeMap(int node) const;
 
  private:
@@ -136,6 +155,7 @@ class FemModel {
 
   Eigen::SparseMatrix<double> stiffness_, mass_, damping_;
   double total_mass_kg_ = 0.0;
+  double root_plate_stiffness_ = 0.0;
 };
 
 }  // namespace simtree
