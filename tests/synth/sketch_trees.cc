@@ -48,7 +48,8 @@ std::string FirstMode(const simtree::Tree& tree, const simtree::SpeciesParams& s
   const simtree::WoodProperties wood = species.wood.Properties();
   simtree::ModesOptions modes;
   modes.count = 1;
-  const double f1 = ComputeModes(simtree::FemModel(tree, wood), modes).frequency_hz[0];
+  const double f1 = ComputeModes(simtree::FemModel(tree, wood, SpeciesFemOptions(species)), modes)
+                        .frequency_hz[0];
   char text[64];
   std::snprintf(text, sizeof(text), ", f1 %.3f Hz zeta1 %.4f", f1, wood.DampingRatioAt(f1));
   return text;

@@ -136,6 +136,22 @@ TEST(Species, WholeFilesFromBeforeYoungWoodStillLoad) {
             std::string::npos);
 }
 
+TEST(Species, WholeFilesFromBeforeTheRootPlateAreClamped) {
+  nlohmann::json doc = Parse(SpeciesToJson(SpeciesPreset("acer_palmatum")).dump());
+  ASSERT_GT(SpeciesPreset("acer_palmatum").root_plate_stiffness_ratio, 0.0);
+  doc.erase("root_plate_stiffness_ratio");
+  const SpeciesParams q = SpeciesFromJson(doc, "old.json");
+  EXPECT_EQ(q.root_plate_stiffness_ratio, 0.0);
+  EXPECT_EQ(SpeciesFemOptions(q).root_plate_stiffness_ratio, 0.0);
+  // A change over a preset keeps the preset's root plate unless it names one.
+  const SpeciesParams over = SpeciesFromJson(Parse(R"({"base": "acer_palmatum"})"), "over.json");
+  EXPECT_EQ(SpeciesFemOptions(over).root_plate_stiffness_ratio,
+            SpeciesPreset("acer_palmatum").root_plate_stiffness_ratio);
+  doc["root_plate_stiffness_ratio"] = -1.0;
+  EXPECT_NE(ErrorOf([&] { SpeciesFromJson(doc, "old.json"); }).find("root_plate_stiffness_ratio"),
+            std::string::npos);
+}
+
 TEST(Species, StrictErrorsNameTheField) {
   const std::string preset = SpeciesToJson(SpeciesPreset("acer_rubrum")).dump();
   auto with = [&](const std::function<void(nlohmann::json&)>& edit) {

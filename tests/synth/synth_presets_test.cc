@@ -33,7 +33,8 @@ TEST_P(PresetFrequency, FirstFrequencyOfSeedsOneToTenIsInTableFour) {
   modes.count = 1;
   double lowest = 1e9, highest = 0.0;
   for (uint64_t seed = 1; seed <= 10; ++seed) {
-    const FemModel model(GenerateTree(species, seed), species.wood.Properties());
+    const FemModel model(GenerateTree(species, seed), species.wood.Properties(),
+                         SpeciesFemOptions(species));
     const double f1 = ComputeModes(model, modes).frequency_hz[0];
     EXPECT_GE(f1, row.f_lo) << row.species << " seed " << seed;
     EXPECT_LE(f1, row.f_hi) << row.species << " seed " << seed;

@@ -37,6 +37,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "simtree/synth/fem_model.h"
 #include "simtree/synth/wood.h"
 
 namespace simtree {
@@ -170,9 +171,15 @@ struct SpeciesParams {
   TrunkParams trunk;
   std::vector<LevelParams> levels;  // 4 to 6 branching levels below the trunk
   SpeciesWood wood;
+  // How far the root plate gives under a sway (fem_model.h): its rotational stiffness over the
+  // trunk base's E I / H. 0 clamps the base.
+  double root_plate_stiffness_ratio = 0.0;
 
   int branching_levels() const { return static_cast<int>(levels.size()); }
 };
+
+// The FEM oracle's options for a tree of this species (its root plate; default meshing).
+FemOptions SpeciesFemOptions(const SpeciesParams& params);
 
 // The presets' names, in a fixed order.
 std::vector<std::string> SpeciesPresetNames();

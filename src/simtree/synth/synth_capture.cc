@@ -305,7 +305,7 @@ SynthReport RunSynth(const SynthOptions& options, const fs::path& out) {
 
   // ---- 2. The FEM oracle: modes, and the rope's force for the wanted deflection.
   const Clock::time_point fem_start = Clock::now();
-  const FemModel model(tree, species.wood.Properties());
+  const FemModel model(tree, species.wood.Properties(), SpeciesFemOptions(species));
   // The lowest 100 modes reach 8-15 Hz on the presets; the modal integration adds the static
   // response of the rest, and their share of any marker's motion after release is far below the
   // sensor's noise. Asking for every mode below 20 Hz instead costs 300+ modes and ~20x the time.
