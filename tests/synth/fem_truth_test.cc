@@ -1,6 +1,7 @@
 #include "simtree/synth/fem_truth.h"
 
 #include <cmath>
+#include <complex>
 
 #include <fmt/format.h>
 #include <gmock/gmock.h>
@@ -80,8 +81,8 @@ TEST(FemTruth, CantileverMarkersSeeTheFirstMode) {
 }
 
 // On the Y, a pulled child's link and branch see the children's modes. Pulled sideways, one
-// child holds the in-phase and the out-of-phase mode of the pair equally, and so does the other
-// child by the Y's mirror symmetry: both get the same truth.
+// child holds the in-phase and the out-of-phase mode of the pair nearly equally; the other child
+// starts almost at rest, where the two cancel, and its peak there is the weaker.
 TEST(FemTruth, YTreeChildrenSeeTheirPairedModes) {
   Tree tree = test::YTree(0.08, 0.02);
   tree.markers = {MakeMarker(tree, 0, 0, 0.5, -1), MakeMarker(tree, 1, 1, 0.9, 0),
@@ -103,13 +104,71 @@ TEST(FemTruth, YTreeChildrenSeeTheirPairedModes) {
     EXPECT_NEAR(peaks[1].frequency_hz / peaks[0].frequency_hz, 1.0, 0.05);
     EXPECT_GT(peaks[1].strength, 0.5 * peaks[0].strength);
   }
-  EXPECT_NEAR(truth.branches[2].peaks[0].strength / truth.branches[1].peaks[0].strength, 1.0, 1e-6);
-  EXPECT_EQ(truth.branches[2].peaks[0].mode, truth.branches[1].peaks[0].mode);
+  EXPECT_LT(truth.branches[2].peaks[0].strength, 0.8 * truth.branches[1].peaks[0].strength);
   // Links and branches name existing modes.
   for (const auto& l : truth.links) {
     ASSERT_FALSE(l.peaks.empty());
     EXPECT_EQ(l.frequency_hz, truth.modes[l.peaks[0].mode].frequency_hz);
   }
+}
+
+// The closed form against Simpson's rule on the decay itself, at, near and far from its frequency.
+TEST(FemTruth, DecayFourierIntegralMatchesQuadrature) {
+  const double omega = kTwoPi * 1.3, zeta = 0.04, a = 0.7, b = -0.3, record = 10.0;
+  const double wd = omega * std::sqrt(1 - zeta * zeta);
+  for (double at : {wd, 0.97 * wd, 2.5 * wd, 0.0}) {
+    const int n = 200000;
+    std::complex<double> sum = 0.0;
+    for (int k = 0; k <= n; ++k) {
+      const double t = record * k / n;
+      const double q = std::exp(-zeta * omega * t) * (a * std::cos(wd * t) + b * std::sin(wd * t));
+      const double w = (k == 0 || k == n) ? 1.0 : (k % 2 ? 4.0 : 2.0);
+      sum += w * q * std::exp(std::complex<double>(0, -at * t));
+    }
+    sum *= record / n / 3.0;
+    EXPECT_NEAR(std::abs(DecayFourierIntegral(omega, zeta, a, b, at, record) - sum), 0.0,
+                1e-9 * (1 + std::abs(sum)))
+        << at;
+  }
+  // At its own frequency, a lone mode's peak is half its amplitude times the envelope's integral.
+  const double peak = 2 * std::abs(DecayFourierIntegral(omega, zeta, a, b, wd, record));
+  // (up to the negative frequency's share, about zeta / 2)
+  EXPECT_NEAR(peak / (std::hypot(a, b) * (1 - std::exp(-zeta * omega * record)) / (zeta * omega)),
+              1.0, 0.03);
+}
+
+// On the Y pulled by one child, the other child starts almost at rest: the pair's in-phase and
+// out-of-phase modes cancel in its signal at release and part as they beat. A record too short
+// to resolve the pair sees little of it there; a long one sees both children alike.
+TEST(FemTruth, CloseModesThatCancelMakeNoPeakInAShortRecord) {
+  Tree tree = test::YTree(0.08, 0.02);
+  tree.markers = {MakeMarker(tree, 0, 0, 0.5, -1), MakeMarker(tree, 1, 1, 0.9, 0),
+                  MakeMarker(tree, 2, 2, 0.9, 0)};
+  WoodProperties wood = test::TestWood();
+  wood.SetRayleighFromRatios(1.0, 0.04, 30.0, 0.03);
+  const FemModel model(tree, wood);
+  const ModalBasis modes = ComputeModes(model, {.count = 20});
+  const FemState held = HeldState(model, 1, {0, 20, 0});
+  const auto strength_ratio = [&](double record) {
+    const ModalTruth truth =
+        ComputeModalTruth(model, modes, tree, held, {.record_after_release_s = record});
+    const auto& pulled = truth.branches[1].peaks;
+    const auto& other = truth.branches[2].peaks;
+    double other_at_pair = 0.0;
+    for (const auto& p : other) {
+      if (std::abs(p.frequency_hz / pulled[0].frequency_hz - 1) < 0.05) {
+        other_at_pair = std::max(other_at_pair, p.strength);
+      }
+    }
+    return other_at_pair / pulled[0].strength;
+  };
+  // The pair (15.9-16.7 Hz, zeta 0.018) decays in about 0.6 s: the other child's share grows
+  // over the first second and stays where the decay leaves it.
+  const double short_ratio = strength_ratio(0.05);
+  const double long_ratio = strength_ratio(20.0);
+  EXPECT_LT(short_ratio, 0.15);
+  EXPECT_GT(long_ratio, 3 * short_ratio);
+  EXPECT_NEAR(strength_ratio(5.0) / long_ratio, 1.0, 0.01);
 }
 
 TEST(FemTruth, BadInputIsAnInputError) {

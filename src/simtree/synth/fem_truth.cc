@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <numeric>
 
 #include <fmt/format.h>
@@ -83,41 +84,63 @@ Decay FreeDecay(const ModalBasis& modes, const Eigen::VectorXd& q0, const Eigen:
   return out;
 }
 
-// The spectral peak of a unit decaying sinusoid over a record T.
-double PeakPerAmplitude(double omega, double zeta, double record) {
-  const double rate = zeta * omega;
-  return rate * record < 1e-9 ? record : (1.0 - std::exp(-rate * record)) / rate;
-}
-
 // Modes of one frequency (a round branch bends alike in two planes) make one spectral peak, and
-// how an eigensolver splits such a pair is arbitrary: they are summed as one oscillation.
+// how an eigensolver splits such a pair is arbitrary: they are one group, reported as its first.
 constexpr double kSameFrequency = 1e-6;  // relative
 
-std::vector<ModalTruth::ModePeak> StrongestModes(const ModalSignal& signal, const ModalBasis& modes,
-                                                 const Decay& decay,
-                                                 const ModalTruthOptions& options) {
-  std::vector<ModalTruth::ModePeak> all;
-  for (int first = 0; first < modes.count();) {
-    int end = first + 1;
-    while (end < modes.count() &&
-           modes.frequency_hz[end] <= modes.frequency_hz[first] * (1 + kSameFrequency)) {
-      ++end;
+// The first mode of each group of modes of one frequency, and the end of the last group.
+std::vector<int> FrequencyGroups(const ModalBasis& modes) {
+  std::vector<int> first;
+  for (int i = 0; i < modes.count(); ++i) {
+    if (first.empty() ||
+        modes.frequency_hz[i] > modes.frequency_hz[first.back()] * (1 + kSameFrequency)) {
+      first.push_back(i);
     }
-    // The signal of the group: Re and Im parts of its complex amplitude vector.
+  }
+  first.push_back(modes.count());
+  return first;
+}
+
+// spectra(i, g): the Fourier integral over the record of mode i's free decay at group g's damped
+// frequency (DecayFourierIntegral).
+Eigen::MatrixXcd DecaySpectra(const ModalBasis& modes, const Decay& decay,
+                              const std::vector<int>& groups, double record) {
+  const int group_count = static_cast<int>(groups.size()) - 1;
+  Eigen::MatrixXcd spectra(modes.count(), group_count);
+  for (int g = 0; g < group_count; ++g) {
+    const int j = groups[g];
+    const double at =
+        modes.omega[j] * std::sqrt(std::max(0.0, 1.0 - std::pow(modes.damping_ratio[j], 2)));
+    for (int i = 0; i < modes.count(); ++i) {
+      spectra(i, g) = DecayFourierIntegral(modes.omega[i], modes.damping_ratio[i],
+                                           decay.cos_part[i], decay.sin_part[i], at, record);
+    }
+  }
+  return spectra;
+}
+
+std::vector<ModalTruth::ModePeak> StrongestModes(const ModalSignal& signal, const ModalBasis& modes,
+                                                 const Decay& decay, const std::vector<int>& groups,
+                                                 const Eigen::MatrixXcd& spectra,
+                                                 const ModalTruthOptions& options) {
+  // The signal's spectrum at every group's frequency: every mode adds with its phase.
+  const Eigen::MatrixXcd spectrum = signal.cast<std::complex<double>>() * spectra;  // 3 x groups
+  std::vector<ModalTruth::ModePeak> all;
+  for (int g = 0; g + 1 < static_cast<int>(groups.size()); ++g) {
+    // The group's own signal: Re and Im parts of its complex amplitude vector.
     Eigen::Vector3d re = Eigen::Vector3d::Zero(), im = Eigen::Vector3d::Zero();
-    for (int i = first; i < end; ++i) {
+    for (int i = groups[g]; i < groups[g + 1]; ++i) {
       re += signal.col(i) * decay.cos_part[i];
       im += signal.col(i) * decay.sin_part[i];
     }
     ModalTruth::ModePeak p;
-    p.mode = first;
-    p.frequency_hz = modes.frequency_hz[first];
-    p.damping_ratio = modes.damping_ratio[first];
+    p.mode = groups[g];
+    p.frequency_hz = modes.frequency_hz[p.mode];
+    p.damping_ratio = modes.damping_ratio[p.mode];
     p.amplitude = std::sqrt(re.squaredNorm() + im.squaredNorm());
-    p.strength = p.amplitude * PeakPerAmplitude(modes.omega[first], modes.damping_ratio[first],
-                                                options.record_after_release_s);
+    // Twice the one-sided integral: a lone mode's peak, a (1 - e^(-zeta w T)) / (zeta w).
+    p.strength = 2.0 * spectrum.col(g).norm();
     all.push_back(p);
-    first = end;
   }
   // Strongest first; ties (a signal at rest) go to the lower mode.
   std::stable_sort(all.begin(), all.end(),
@@ -127,6 +150,21 @@ std::vector<ModalTruth::ModePeak> StrongestModes(const ModalSignal& signal, cons
 }
 
 }  // namespace
+
+std::complex<double> DecayFourierIntegral(double omega, double zeta, double cos_part,
+                                          double sin_part, double at, double record) {
+  // q(t) = (A - iB)/2 e^((-s + i w_d) t) + (A + iB)/2 e^((-s - i w_d) t), s = zeta w, and
+  // integral_0^T e^(l t) dt = (e^(l T) - 1) / l (T as l -> 0).
+  const auto integral = [record](std::complex<double> l) {
+    return std::abs(l) * record < 1e-9 ? std::complex<double>(record)
+                                       : (std::exp(l * record) - 1.0) / l;
+  };
+  const double decay_rate = zeta * omega;
+  const double wd = omega * std::sqrt(std::max(0.0, 1.0 - zeta * zeta));
+  const std::complex<double> a(cos_part, -sin_part);
+  return 0.5 * a * integral({-decay_rate, wd - at}) +
+         0.5 * std::conj(a) * integral({-decay_rate, -wd - at});
+}
 
 ModalTruth ComputeModalTruth(const FemModel& model, const ModalBasis& modes, const Tree& tree,
                              const FemState& release_state, const ModalTruthOptions& options) {
@@ -157,6 +195,9 @@ ModalTruth ComputeModalTruth(const FemModel& model, const ModalBasis& modes, con
   const Decay decay = FreeDecay(modes, modes.Project(model.mass(), release_state.x),
                                 modes.Project(model.mass(), release_state.v));
   const SignalBuilder signals(model, modes, tree);
+  const std::vector<int> groups = FrequencyGroups(modes);
+  const Eigen::MatrixXcd spectra =
+      DecaySpectra(modes, decay, groups, options.record_after_release_s);
 
   ModalTruth truth;
   truth.source = "fem";
@@ -167,7 +208,7 @@ ModalTruth ComputeModalTruth(const FemModel& model, const ModalBasis& modes, con
   }
   if (const int sway = LowestSwayMode(masses); sway >= 0) truth.lowest_sway_mode = sway;
   const auto fill = [&](const ModalSignal& signal, auto& out) {
-    out.peaks = StrongestModes(signal, modes, decay, options);
+    out.peaks = StrongestModes(signal, modes, decay, groups, spectra, options);
     out.frequency_hz = out.peaks.front().frequency_hz;
     out.damping_ratio = out.peaks.front().damping_ratio;
   };

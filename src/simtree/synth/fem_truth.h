@@ -24,12 +24,18 @@
 // included). Modes of one frequency (within 1e-6: a round branch bends alike in two planes, and
 // how an eigensolver splits such a pair is arbitrary) are one oscillation: their complex
 // amplitude vectors sum(s_i (A_i - i B_i)) add before the norm, and they report their first mode.
-// Dominance: the mode whose spectral peak over the record T after release would be highest, the
-// magnitude of the Fourier integral of the decaying envelope at its own frequency,
-//   strength_i = a_i (1 - e^(-zeta w T)) / (zeta w)   (a_i T when undamped).
+// Dominance: the mode whose spectral peak over the record T after release would be highest: the
+// magnitude of the Fourier integral over T of the whole signal at the mode's damped frequency,
+//   strength_j = 2 | sum_i s_i F_i(w_j) |,  F_i(W) = integral_0^T q_i(t) e^(-i W t) dt,
+// which is a_j (1 - e^(-zeta w T)) / (zeta w) for a mode far from the others. Modes closer than
+// the record resolves (|f_i - f_j| T below about 1) add with their phases: two that cancel in a
+// link's signal make no peak there, as in the record the identification sees, and a third, weaker
+// by its own amplitude, can be the link's strongest.
 // The result carries the dominant mode's frequency and damping and, in `peaks`, the two
 // strongest modes. Its `modes` are all modes of the basis: pass enough (every mode below ~20 Hz,
 // and at least 60) that the release state is represented.
+
+#include <complex>
 
 #include <Eigen/Core>
 
@@ -47,6 +53,11 @@ struct ModalTruthOptions {
   // How many of the strongest modes to keep in each link's and branch's `peaks`.
   int peaks = 2;
 };
+
+// The Fourier integral over [0, record] of the free decay e^(-zeta omega t) (cos_part cos w_d t +
+// sin_part sin w_d t), w_d = omega sqrt(1 - zeta^2), at angular frequency `at` (closed form).
+std::complex<double> DecayFourierIntegral(double omega, double zeta, double cos_part,
+                                          double sin_part, double at, double record);
 
 // `tree` is the model's tree with its markers (its branches must match the model's). Links follow
 // the markers in id order, the root marker's displacement first; branches in id order (a branch
