@@ -16,9 +16,29 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 struct MarkerMotion {
   std::vector<double> speed;  // speed[i]: over the `lag` frames before frame i (NaN when unknown)
-  double noise_speed = 0.0;   // the rms speed noise alone gives
+  std::vector<double> sustained;  // SustainedSpeed(speed)
+  double noise_speed = 0.0;       // the rms speed noise alone gives
   double peak_speed = 0.0;
 };
+
+// The least of each frame's speed and its neighbours' (at least two of the three known): a swing
+// keeps its speed for several frames, while a tracker jump the outlier test missed makes two
+// lone spikes (into the wrong position and out of it), which must not set the peak or the swing.
+std::vector<double> SustainedSpeed(const std::vector<double>& speed) {
+  const int n = static_cast<int>(speed.size());
+  std::vector<double> out(n, kNaN);
+  for (int i = 0; i < n; ++i) {
+    double least = std::numeric_limits<double>::infinity();
+    int known = 0;
+    for (int j = std::max(0, i - 1); j <= std::min(n - 1, i + 1); ++j) {
+      if (std::isnan(speed[j])) continue;
+      least = std::min(least, speed[j]);
+      ++known;
+    }
+    if (known >= 2) out[i] = least;
+  }
+  return out;
+}
 
 // Speeds over a lag of about 0.1 s: at 30 fps a frame-to-frame difference of 2-3 mm tracker noise
 // is already 0.1-0.2 m/s, as fast as a gentle swing.
@@ -44,8 +64,9 @@ MarkerMotion Motion(const Trajectories& t, const MarkerTrack& track) {
   }
   const double sigma = d2.empty() ? 0.0 : UpperMedian(std::move(d2)) / 0.6745 / std::sqrt(6.0);
   m.noise_speed = sigma * std::sqrt(6.0) / (lag * dt);
+  m.sustained = SustainedSpeed(m.speed);
   for (int i = 0; i < n; ++i) {
-    if (!std::isnan(m.speed[i])) m.peak_speed = std::max(m.peak_speed, m.speed[i]);
+    if (!std::isnan(m.sustained[i])) m.peak_speed = std::max(m.peak_speed, m.sustained[i]);
   }
   return m;
 }
@@ -88,7 +109,7 @@ ReleaseDetection DetectRelease(const Trajectories& t, const ReleaseOptions& opti
   const int n = t.frame_count();
   int swing = -1;
   for (int i = 1; i < n && swing < 0; ++i) {
-    if (best.speed[i] >= options.swing_fraction * best.peak_speed) swing = i;
+    if (best.sustained[i] >= options.swing_fraction * best.peak_speed) swing = i;
   }
   const double quiet =
       std::max(options.quiet_fraction * best.peak_speed, options.noise_factor * best.noise_speed);

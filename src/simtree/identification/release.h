@@ -10,7 +10,8 @@ namespace simtree {
 
 struct ReleaseOptions {
   // A frame moves "a lot" when its speed reaches this share of the record's peak speed; the first
-  // such frame is in the first swing after the release.
+  // such frame is in the first swing after the release. Both count speeds kept for three frames:
+  // a lone tracker jump is not a swing.
   double swing_fraction = 0.5;
   // Walking back from there, the release is the last frame whose speed (over about 0.1 s) is below
   // both this share of the peak speed and `noise_factor` times the rms speed noise alone gives.
