@@ -57,6 +57,32 @@ TEST(Release, ALoneTrackerJumpDuringTheHoldIsNotTheRelease) {
   }
 }
 
+// The marker that moves most lost its tape from the pull's start into the swing: the still frame
+// before that gap is not the release, and another marker that saw the hold decides.
+TEST(Release, AMarkerUnseenThroughTheHoldDoesNotDecide) {
+  SyntheticMarkerTree tree = Pulled();
+  tree.links.push_back(tree.links[0]);
+  tree.links[1].theta_u = {{1.2, 0.03, 0.05, 0.0}};
+  std::vector<MarkerLink> markers;
+  const Trajectories truth = MakeMarkerTrajectories(tree, 30.0, 3.0, 8.0, &markers);
+  for (uint64_t seed : {1, 2, 3}) {
+    TrackerErrorOptions noise;
+    noise.seed = seed;
+    Trajectories t = SimulateTrackerError(truth, noise);
+    const ReleaseDetection seen = DetectRelease(t);
+    ASSERT_TRUE(seen.found) << seen.note;
+    for (MarkerTrack& track : t.tracks) {
+      if (track.marker != seen.marker) continue;
+      for (int i = FrameAtOrAfter(t, 1.0); i < FrameAtOrAfter(t, 3.3); ++i) track.valid[i] = false;
+    }
+    const ReleaseDetection r = DetectRelease(t);
+    EXPECT_TRUE(r.found) << r.note;
+    EXPECT_NE(r.marker, seen.marker) << r.note;
+    EXPECT_GE(r.time_s, 3.0 - 1e-9) << r.note;
+    EXPECT_LE(r.time_s, 3.0 + 0.15) << r.note;
+  }
+}
+
 TEST(Release, ARecordThatStartsSwingingOrNeverMovesStartsAtItsFirstFrame) {
   std::vector<MarkerLink> markers;
   const ReleaseDetection swinging =

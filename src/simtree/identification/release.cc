@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -71,6 +73,46 @@ MarkerMotion Motion(const Trajectories& t, const MarkerTrack& track) {
   return m;
 }
 
+// Where one marker's motion puts the release: its first swing (a speed kept at
+// `swing_fraction` of its peak), and walking back from there its last still frame.
+struct MarkerRelease {
+  int swing = -1;
+  int still = -1;
+  bool seen_throughout = false;  // every speed from the still frame to the swing is known
+};
+
+MarkerRelease ReleaseOf(const MarkerMotion& m, int hold_frames, const ReleaseOptions& options) {
+  MarkerRelease r;
+  const int n = static_cast<int>(m.speed.size());
+  for (int i = 1; i < n && r.swing < 0; ++i) {
+    if (m.sustained[i] >= options.swing_fraction * m.peak_speed) r.swing = i;
+  }
+  const double quiet =
+      std::max(options.quiet_fraction * m.peak_speed, options.noise_factor * m.noise_speed);
+  // Still through the `hold_frames` up to frame i (half of them known at least): a swing's
+  // turning point is slow for a frame or two, a hold for longer.
+  const auto held = [&](int i) {
+    int known = 0;
+    for (int j = std::max(0, i - hold_frames); j <= i; ++j) {
+      if (std::isnan(m.speed[j])) continue;
+      if (m.speed[j] > quiet) return false;
+      ++known;
+    }
+    return 2 * known > hold_frames;
+  };
+  bool gap = false;
+  for (int i = r.swing; i >= 1; --i) {
+    if (std::isnan(m.speed[i])) {
+      gap = true;
+    } else if (m.speed[i] <= quiet && (i <= hold_frames || held(i))) {
+      r.still = i;
+      r.seen_throughout = !gap;
+      break;
+    }
+  }
+  return r;
+}
+
 }  // namespace
 
 int FrameAtOrAfter(const Trajectories& t, double time_s) {
@@ -85,20 +127,25 @@ ReleaseDetection DetectRelease(const Trajectories& t, const ReleaseOptions& opti
     out.note = "too few frames to look for a release; the record is taken from its first frame";
     return out;
   }
-  // The marker that moves most above its own noise decides.
-  MarkerMotion best;
-  double best_ratio = -1;
+  // The marker that moves most above its own noise decides, unless its tape was lost between
+  // the hold and the swing (a still frame before the gap may be the pull's start, not its
+  // release): then the next marker, in order of motion over noise, that saw the same swing.
+  std::vector<MarkerMotion> motions;
+  std::vector<double> ratios;
   for (const MarkerTrack& track : t.tracks) {
-    MarkerMotion m = Motion(t, track);
-    const double ratio = m.peak_speed / std::max(m.noise_speed, 1e-12);
-    if (ratio > best_ratio) {
-      best_ratio = ratio;
-      best = std::move(m);
-      out.marker = track.marker;
-    }
+    motions.push_back(Motion(t, track));
+    ratios.push_back(motions.back().peak_speed / std::max(motions.back().noise_speed, 1e-12));
   }
-  out.peak_speed = best.peak_speed;
-  out.noise_speed = best.noise_speed;
+  std::vector<int> order(motions.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return ratios[a] > ratios[b]; });
+  const auto decide = [&](int k) {
+    out.marker = t.tracks[k].marker;
+    out.peak_speed = motions[k].peak_speed;
+    out.noise_speed = motions[k].noise_speed;
+  };
+  const MarkerMotion& best = motions[order.front()];
+  decide(order.front());
   if (best.peak_speed <= options.noise_factor * best.noise_speed) {
     out.note = fmt::format(
         "no marker moves above its noise (peak {:.3g} m/s, noise {:.3g} m/s); "
@@ -106,21 +153,24 @@ ReleaseDetection DetectRelease(const Trajectories& t, const ReleaseOptions& opti
         best.peak_speed, best.noise_speed);
     return out;
   }
-  const int n = t.frame_count();
-  int swing = -1;
-  for (int i = 1; i < n && swing < 0; ++i) {
-    if (best.sustained[i] >= options.swing_fraction * best.peak_speed) swing = i;
-  }
-  const double quiet =
-      std::max(options.quiet_fraction * best.peak_speed, options.noise_factor * best.noise_speed);
-  int release = -1;
-  for (int i = swing; i >= 1; --i) {
-    if (!std::isnan(best.speed[i]) && best.speed[i] <= quiet) {
-      release = i;
-      break;
+  const double dt = (t.times_s.back() - t.times_s.front()) / (t.frame_count() - 1);
+  const int hold_frames = std::max(1, static_cast<int>(std::lround(options.min_hold_s / dt)));
+  const MarkerRelease first = ReleaseOf(best, hold_frames, options);
+  MarkerRelease release = first;
+  if (!first.seen_throughout) {
+    const int same_swing = std::max(1, static_cast<int>(std::lround(0.5 / dt)));
+    for (int k : order) {
+      const MarkerMotion& m = motions[k];
+      if (m.peak_speed <= options.noise_factor * m.noise_speed) break;
+      const MarkerRelease r = ReleaseOf(m, hold_frames, options);
+      if (r.seen_throughout && r.swing >= 0 && std::abs(r.swing - first.swing) <= same_swing) {
+        release = r;
+        decide(k);
+        break;
+      }
     }
   }
-  if (release < 0) {
+  if (release.still < 0) {
     out.note = fmt::format(
         "marker {} is already swinging in the first frames; the record is "
         "taken from its first frame",
@@ -128,10 +178,11 @@ ReleaseDetection DetectRelease(const Trajectories& t, const ReleaseOptions& opti
     return out;
   }
   out.found = true;
-  out.frame_index = release;
-  out.time_s = t.times_s[release];
-  out.note = fmt::format("marker {} is still until {:.3f} s, then swings (peak {:.3g} m/s)",
-                         out.marker, out.time_s, best.peak_speed);
+  out.frame_index = release.still;
+  out.time_s = t.times_s[release.still];
+  out.note = fmt::format("marker {} is still until {:.3f} s, then swings (peak {:.3g} m/s){}",
+                         out.marker, out.time_s, out.peak_speed,
+                         release.seen_throughout ? "" : "; its track has a gap before the swing");
   return out;
 }
 

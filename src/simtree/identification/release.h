@@ -17,6 +17,10 @@ struct ReleaseOptions {
   // both this share of the peak speed and `noise_factor` times the rms speed noise alone gives.
   double quiet_fraction = 0.1;
   double noise_factor = 3.0;
+  // ... and whose speeds were that low for this long before it (a hold, not a swing's turning
+  // point). A marker whose track has a gap between that frame and the swing does not decide when
+  // another marker saw the same swing throughout.
+  double min_hold_s = 0.2;
 };
 
 struct ReleaseDetection {
