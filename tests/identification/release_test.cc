@@ -11,6 +11,13 @@ namespace {
 
 using ::testing::HasSubstr;
 
+// A tracker's errors (default options) on `truth`, drawn with `seed`.
+Trajectories Tracked(const Trajectories& truth, uint64_t seed) {
+  TrackerErrorOptions noise;
+  noise.seed = seed;
+  return SimulateTrackerError(truth, noise);
+}
+
 SyntheticMarkerTree Pulled() {
   SyntheticMarkerTree tree;
   tree.links.resize(1);
@@ -23,9 +30,7 @@ TEST(Release, FoundAtTheEndOfTheHoldEvenWithTrackerNoise) {
   std::vector<MarkerLink> markers;
   const Trajectories truth = MakeMarkerTrajectories(Pulled(), 30.0, 3.0, 8.0, &markers);
   for (uint64_t seed : {1, 2, 3}) {
-    TrackerErrorOptions noise;
-    noise.seed = seed;
-    const ReleaseDetection r = DetectRelease(SimulateTrackerError(truth, noise));
+    const ReleaseDetection r = DetectRelease(Tracked(truth, seed));
     EXPECT_TRUE(r.found) << r.note;
     EXPECT_EQ(r.marker, 1);
     // Never before the release (a still frame in the decay would break the model), at most
@@ -41,9 +46,7 @@ TEST(Release, ALoneTrackerJumpDuringTheHoldIsNotTheRelease) {
   std::vector<MarkerLink> markers;
   const Trajectories truth = MakeMarkerTrajectories(Pulled(), 30.0, 3.0, 8.0, &markers);
   for (uint64_t seed : {1, 2, 3}) {
-    TrackerErrorOptions noise;
-    noise.seed = seed;
-    Trajectories tracked = SimulateTrackerError(truth, noise);
+    Trajectories tracked = Tracked(truth, seed);
     for (MarkerTrack& track : tracked.tracks) {
       const int frame = FrameAtOrAfter(tracked, 1.0);
       track.valid[frame] = true;
@@ -66,9 +69,7 @@ TEST(Release, AMarkerUnseenThroughTheHoldDoesNotDecide) {
   std::vector<MarkerLink> markers;
   const Trajectories truth = MakeMarkerTrajectories(tree, 30.0, 3.0, 8.0, &markers);
   for (uint64_t seed : {1, 2, 3}) {
-    TrackerErrorOptions noise;
-    noise.seed = seed;
-    Trajectories t = SimulateTrackerError(truth, noise);
+    Trajectories t = Tracked(truth, seed);
     const ReleaseDetection seen = DetectRelease(t);
     ASSERT_TRUE(seen.found) << seen.note;
     for (MarkerTrack& track : t.tracks) {

@@ -28,6 +28,27 @@ FemState HeldState(const FemModel& model, int branch, const Eigen::Vector3d& for
   return s;
 }
 
+// The Y (1 m children of 2 cm) with a marker on the trunk and one near each child's tip, held
+// pulled sideways by child 1's tip.
+struct PulledY {
+  Tree tree = Marked(test::YTree(0.08, 0.02));
+  WoodProperties wood = DampedWood();
+  FemModel model{tree, wood};
+  ModalBasis modes = ComputeModes(model, {.count = 20});
+  FemState held = HeldState(model, 1, {0, 20, 0});
+
+  static Tree Marked(Tree t) {
+    t.markers = {MakeMarker(t, 0, 0, 0.5, -1), MakeMarker(t, 1, 1, 0.9, 0),
+                 MakeMarker(t, 2, 2, 0.9, 0)};
+    return t;
+  }
+  static WoodProperties DampedWood() {
+    WoodProperties w = test::TestWood();
+    w.SetRayleighFromRatios(1.0, 0.04, 30.0, 0.03);
+    return w;
+  }
+};
+
 // A single cantilever with a marker at mid-length (the root) and one at the tip: released from a
 // tip pull, every signal is dominated by the first bending mode.
 TEST(FemTruth, CantileverMarkersSeeTheFirstMode) {
@@ -84,14 +105,11 @@ TEST(FemTruth, CantileverMarkersSeeTheFirstMode) {
 // child holds the in-phase and the out-of-phase mode of the pair nearly equally; the other child
 // starts almost at rest, where the two cancel, and its peak there is the weaker.
 TEST(FemTruth, YTreeChildrenSeeTheirPairedModes) {
-  Tree tree = test::YTree(0.08, 0.02);
-  tree.markers = {MakeMarker(tree, 0, 0, 0.5, -1), MakeMarker(tree, 1, 1, 0.9, 0),
-                  MakeMarker(tree, 2, 2, 0.9, 0)};
-  WoodProperties wood = test::TestWood();
-  wood.SetRayleighFromRatios(1.0, 0.04, 30.0, 0.03);
-  const FemModel model(tree, wood);
-  const ModalBasis modes = ComputeModes(model, {.count = 20});
-  const ModalTruth truth = ComputeModalTruth(model, modes, tree, HeldState(model, 1, {0, 20, 0}));
+  const PulledY y;
+  const Tree& tree = y.tree;
+  const WoodProperties& wood = y.wood;
+  const ModalBasis& modes = y.modes;
+  const ModalTruth truth = ComputeModalTruth(y.model, modes, tree, y.held);
   ASSERT_EQ(truth.branches.size(), 3u);
   ASSERT_EQ(truth.links.size(), 3u);
   const double child_f1 = test::CantileverFrequencyHz(test::kBetaL1, wood, 1.0, 0.02);
@@ -141,17 +159,10 @@ TEST(FemTruth, DecayFourierIntegralMatchesQuadrature) {
 // out-of-phase modes cancel in its signal at release and part as they beat. A record too short
 // to resolve the pair sees little of it there; a long one sees both children alike.
 TEST(FemTruth, CloseModesThatCancelMakeNoPeakInAShortRecord) {
-  Tree tree = test::YTree(0.08, 0.02);
-  tree.markers = {MakeMarker(tree, 0, 0, 0.5, -1), MakeMarker(tree, 1, 1, 0.9, 0),
-                  MakeMarker(tree, 2, 2, 0.9, 0)};
-  WoodProperties wood = test::TestWood();
-  wood.SetRayleighFromRatios(1.0, 0.04, 30.0, 0.03);
-  const FemModel model(tree, wood);
-  const ModalBasis modes = ComputeModes(model, {.count = 20});
-  const FemState held = HeldState(model, 1, {0, 20, 0});
+  const PulledY y;
   const auto strength_ratio = [&](double record) {
     const ModalTruth truth =
-        ComputeModalTruth(model, modes, tree, held, {.record_after_release_s = record});
+        ComputeModalTruth(y.model, y.modes, y.tree, y.held, {.record_after_release_s = record});
     const auto& pulled = truth.branches[1].peaks;
     const auto& other = truth.branches[2].peaks;
     double other_at_pair = 0.0;
