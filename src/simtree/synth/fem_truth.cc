@@ -70,6 +70,12 @@ Eigen::Vector3d TangentAtNode(const Branch& b, int index) {
   return t.norm() > 1e-12 ? Eigen::Vector3d(t.normalized()) : Eigen::Vector3d::UnitZ();
 }
 
+// A mode's damped angular frequency w_d = w sqrt(1 - zeta^2), kept above zero for the decay's
+// B = (q'(0) + zeta w A) / w_d (an overdamped mode, none of a tree's lowest, is nearly still).
+double DampedOmega(double omega, double zeta) {
+  return omega * std::sqrt(std::max(1e-12, 1.0 - zeta * zeta));
+}
+
 // Each mode's free decay after release, q(t) = e^(-zeta w t) (A cos w_d t + B sin w_d t).
 struct Decay {
   Eigen::VectorXd cos_part, sin_part;  // A, B per mode
@@ -78,8 +84,7 @@ Decay FreeDecay(const ModalBasis& modes, const Eigen::VectorXd& q0, const Eigen:
   Decay out{q0, Eigen::VectorXd(modes.count())};
   for (int i = 0; i < modes.count(); ++i) {
     const double w = modes.omega[i], zeta = modes.damping_ratio[i];
-    const double wd = w * std::sqrt(std::max(1e-12, 1.0 - zeta * zeta));
-    out.sin_part[i] = (qd0[i] + zeta * w * q0[i]) / wd;
+    out.sin_part[i] = (qd0[i] + zeta * w * q0[i]) / DampedOmega(w, zeta);
   }
   return out;
 }
@@ -109,8 +114,7 @@ Eigen::MatrixXcd DecaySpectra(const ModalBasis& modes, const Decay& decay,
   Eigen::MatrixXcd spectra(modes.count(), group_count);
   for (int g = 0; g < group_count; ++g) {
     const int j = groups[g];
-    const double at =
-        modes.omega[j] * std::sqrt(std::max(0.0, 1.0 - std::pow(modes.damping_ratio[j], 2)));
+    const double at = DampedOmega(modes.omega[j], modes.damping_ratio[j]);
     for (int i = 0; i < modes.count(); ++i) {
       spectra(i, g) = DecayFourierIntegral(modes.omega[i], modes.damping_ratio[i],
                                            decay.cos_part[i], decay.sin_part[i], at, record);
@@ -160,7 +164,7 @@ std::complex<double> DecayFourierIntegral(double omega, double zeta, double cos_
                                        : (std::exp(l * record) - 1.0) / l;
   };
   const double decay_rate = zeta * omega;
-  const double wd = omega * std::sqrt(std::max(0.0, 1.0 - zeta * zeta));
+  const double wd = DampedOmega(omega, zeta);
   const std::complex<double> a(cos_part, -sin_part);
   return 0.5 * a * integral({-decay_rate, wd - at}) +
          0.5 * std::conj(a) * integral({-decay_rate, -wd - at});
