@@ -159,7 +159,8 @@ ReleaseDetection DetectRelease(const Trajectories& t, const ReleaseOptions& opti
   MarkerRelease release = first;
   if (!first.seen_throughout) {
     const int same_swing = std::max(1, static_cast<int>(std::lround(0.5 / dt)));
-    for (int k : order) {
+    for (size_t o = 1; o < order.size(); ++o) {  // after the best, whose release is `first`
+      const int k = order[o];
       const MarkerMotion& m = motions[k];
       if (m.peak_speed <= options.noise_factor * m.noise_speed) break;
       const MarkerRelease r = ReleaseOf(m, hold_frames, options);
