@@ -76,13 +76,13 @@ const Tree& CachedTree(int branches) {
 // Args: branches, threads (0 = all), wind (0/1).
 void BM_Step(benchmark::State& state) {
   const Tree& tree = CachedTree(static_cast<int>(state.range(0)));
-  DynamicsOptions options;
+  dynamics::DynamicsOptions options;
   options.max_threads = static_cast<int>(state.range(1));
   options.wind.enabled = state.range(2) != 0;
   options.wind.mean_speed_mps = 8.0;
-  TreeDynamics sim(tree, options);
+  dynamics::TreeDynamics sim(tree, options);
   // A pull test: a rope on a first-level branch, held.
-  Rope rope;
+  dynamics::Rope rope;
   rope.branch = std::min(1, tree.size() - 1);
   rope.anchor = tree.branches[rope.branch].tip().position + Eigen::Vector3d(0, 0, -5);
   rope.force_n = 200.0;

@@ -23,10 +23,10 @@
 
 #include "simtree/core/tree_json.h"
 #include "simtree/eval/identification_metrics.h"
+#include "simtree/identification/detail/test_signals.h"
 #include "simtree/identification/estimators.h"
 #include "simtree/identification/identify.h"
 #include "simtree/identification/materials_file.h"
-#include "simtree/identification/test_signals.h"
 #include "simtree/io/ground_truth.h"
 #include "simtree/tracking/tracker_error.h"
 
@@ -55,17 +55,18 @@ void NotesTable() {
     double z[3] = {}, f[3] = {}, sd = 0;
     const int trials = 50;
     for (int seed = 1; seed <= trials; ++seed) {
-      DecayRecordOptions o;
+      identification::DecayRecordOptions o;
       o.duration_s = c.duration;
       o.noise_std = 0.05;
       o.seed = seed;
-      const SampledSignal s = MakeDecayRecord({{{c.f, c.zeta, 1.0, 0.4}}}, o);
+      const identification::SampledSignal s =
+          identification::MakeDecayRecord({{{c.f, c.zeta, 1.0, 0.4}}}, o);
       int k = 0;
-      for (EstimatorKind kind : AllEstimators()) {
-        const ModalEstimate e = EstimateModes(s, kind).dominant;
+      for (identification::EstimatorKind kind : identification::AllEstimators()) {
+        const identification::ModalEstimate e = identification::EstimateModes(s, kind).dominant;
         z[k] += e.damping_ratio / trials;
         f[k] += e.frequency_hz / trials;
-        if (kind == EstimatorKind::kDampedSinusoidFit) sd += e.damping_std / trials;
+        if (kind == identification::EstimatorKind::kDampedSinusoidFit) sd += e.damping_std / trials;
         ++k;
       }
     }
@@ -79,8 +80,8 @@ void NotesTable() {
 // a few percent from it, as in a real branch), one to three weaker modes of the tree, white noise
 // and tracker gaps. Truth is the dominant mode.
 struct Scenario {
-  std::vector<std::vector<DampedSinusoid>> channels;
-  DampedSinusoid dominant;
+  std::vector<std::vector<identification::DampedSinusoid>> channels;
+  identification::DampedSinusoid dominant;
 };
 
 Scenario RandomScenario(std::mt19937_64& rng) {
@@ -98,7 +99,8 @@ Scenario RandomScenario(std::mt19937_64& rng) {
   for (int k = 0; k < extra; ++k) {
     const double fk = 0.6 + 2.4 * u(rng);
     if (std::abs(fk / f - 1) < 0.08) continue;  // a neighbour this close would be "the" mode
-    const DampedSinusoid m{fk, 0.02 + 0.05 * u(rng), 0.1 + 0.35 * u(rng), 6.283 * u(rng)};
+    const identification::DampedSinusoid m{fk, 0.02 + 0.05 * u(rng), 0.1 + 0.35 * u(rng),
+                                           6.283 * u(rng)};
     s.channels[k % 2].push_back(m);
   }
   return s;
@@ -113,7 +115,7 @@ void ComparisonTable() {
       "abs dzeta/zeta | 90th pct | no value | ms per record |\n");
   std::printf("| --- | --- | --- | --- | --- | --- | --- | --- |\n");
   for (double noise : {0.02, 0.05, 0.10, 0.20}) {
-    for (EstimatorKind kind : AllEstimators()) {
+    for (identification::EstimatorKind kind : identification::AllEstimators()) {
       std::mt19937_64 rng(7);
       std::vector<double> df, dz;
       int failed = 0;
@@ -121,13 +123,13 @@ void ComparisonTable() {
       const int records = 200;
       for (int r = 0; r < records; ++r) {
         const Scenario sc = RandomScenario(rng);
-        DecayRecordOptions o;
+        identification::DecayRecordOptions o;
         o.noise_std = noise;
         o.gap_rate = 0.01;
         o.seed = 1000 + r;
-        const SampledSignal s = MakeDecayRecord(sc.channels, o);
+        const identification::SampledSignal s = identification::MakeDecayRecord(sc.channels, o);
         const auto start = std::chrono::steady_clock::now();
-        const ModalEstimate e = EstimateModes(s, kind).dominant;
+        const identification::ModalEstimate e = identification::EstimateModes(s, kind).dominant;
         seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         if (!e.has_frequency() || !e.has_damping()) {
           ++failed;
@@ -147,17 +149,18 @@ void ComparisonTable() {
 
 int Score(const std::string& scene, const std::string& materials_path, const std::string& tree) {
   const ModalTruth truth = ReadModalTruth(scene + "/gt/modal.json");
-  const MaterialsFile materials = ReadMaterialsJson(materials_path);
+  const identification::MaterialsFile materials = identification::ReadMaterialsJson(materials_path);
   std::printf("scene %s (truth: %s), %zu truth links, %zu truth branches\n", scene.c_str(),
               truth.source.c_str(), truth.links.size(), truth.branches.size());
-  const LinkScores chosen = ScoreLinks(materials, truth);
-  std::printf("%s", FormatLinkScores(chosen).c_str());
-  for (EstimatorKind kind : AllEstimators()) {
-    std::printf("%s\n",
-                FormatSummary(ToString(kind), ScoreLinks(materials, truth, kind).summary).c_str());
+  const eval::LinkScores chosen = eval::ScoreLinks(materials, truth);
+  std::printf("%s", eval::FormatLinkScores(chosen).c_str());
+  for (identification::EstimatorKind kind : identification::AllEstimators()) {
+    std::printf(
+        "%s\n",
+        FormatSummary(ToString(kind), eval::ScoreLinks(materials, truth, kind).summary).c_str());
   }
   if (!tree.empty()) {
-    const BranchScores b = ScoreBranches(ReadTreeJson(tree), truth);
+    const eval::BranchScores b = eval::ScoreBranches(ReadTreeJson(tree), truth);
     std::printf("%s\n", FormatSummary("branches measured", b.measured).c_str());
     std::printf("%s\n", FormatSummary("branches interpolated", b.interpolated).c_str());
   }
@@ -166,22 +169,23 @@ int Score(const std::string& scene, const std::string& materials_path, const std
 
 // Timings: each estimator on one tree-like record; a whole identification of a 6-link tree.
 void BM_Estimator(benchmark::State& state) {
-  const EstimatorKind kind = static_cast<EstimatorKind>(state.range(0));
+  const identification::EstimatorKind kind =
+      static_cast<identification::EstimatorKind>(state.range(0));
   std::mt19937_64 rng(3);
   const Scenario sc = RandomScenario(rng);
-  DecayRecordOptions o;
+  identification::DecayRecordOptions o;
   o.noise_std = 0.05;
-  const SampledSignal s = MakeDecayRecord(sc.channels, o);
-  for (auto _ : state) benchmark::DoNotOptimize(EstimateModes(s, kind));
+  const identification::SampledSignal s = identification::MakeDecayRecord(sc.channels, o);
+  for (auto _ : state) benchmark::DoNotOptimize(identification::EstimateModes(s, kind));
   state.SetLabel(ToString(kind));
 }
 BENCHMARK(BM_Estimator)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 
 void BM_IdentifyTree(benchmark::State& state) {
-  SyntheticMarkerTree tree;
+  identification::SyntheticMarkerTree tree;
   tree.root_motion[0] = {{0.9, 0.025, 0.01, 0.0}};
   for (int k = 0; k < 6; ++k) {
-    SyntheticLink link;
+    identification::SyntheticLink link;
     link.parent = k == 0 ? -1 : (k - 1) / 2;
     link.rest_direction = Eigen::Vector3d(std::cos(k), -1.0, std::sin(k));
     link.length_m = 0.5;
@@ -190,11 +194,13 @@ void BM_IdentifyTree(benchmark::State& state) {
     tree.links.push_back(link);
   }
   std::vector<MarkerLink> markers;
-  const Trajectories t = SimulateTrackerError(MakeMarkerTrajectories(tree, 30, 2, 10, &markers),
-                                              TrackerErrorOptions{});
-  IdentifyOptions options;
+  const Trajectories t = tracking::SimulateTrackerError(
+      identification::MakeMarkerTrajectories(tree, 30, 2, 10, &markers),
+      tracking::TrackerErrorOptions{});
+  identification::IdentifyOptions options;
   options.compare_estimators = state.range(0) != 0;
-  for (auto _ : state) benchmark::DoNotOptimize(IdentifyMaterials(t, markers, options));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(identification::IdentifyMaterials(t, markers, options));
   state.SetLabel(options.compare_estimators ? "7 links, all estimators" : "7 links, default");
 }
 BENCHMARK(BM_IdentifyTree)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);

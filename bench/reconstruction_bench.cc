@@ -62,7 +62,7 @@ Tree TrueTree(const std::string& name) {
 struct MeanScores {
   double recall = 0, precision = 0, distance = 0, thick = 0, radius = 0, trunk = 0;
   double length = 0, abs_length = 0;
-  void Add(const TruthScores& s, double cases) {
+  void Add(const eval::TruthScores& s, double cases) {
     recall += s.recall / cases;
     precision += s.precision / cases;
     distance += s.mean_skeleton_distance_m / cases;
@@ -75,14 +75,14 @@ struct MeanScores {
 };
 
 struct CaseResult {
-  TruthScores scores;
+  eval::TruthScores scores;
   double seconds = 0.0;
   size_t points = 0;
 };
 
 CaseResult RunStandIn(const Tree& truth, double noise_mm, uint64_t seed,
-                      const ReconstructionOptions& options, const std::string& picture = "",
-                      int views = 10) {
+                      const reconstruction::ReconstructionOptions& options,
+                      const std::string& picture = "", int views = 10) {
   test::StandInScanOptions scan_options;
   scan_options.views = views;
   scan_options.noise_at_2m_m = noise_mm * 1e-3;
@@ -90,28 +90,31 @@ CaseResult RunStandIn(const Tree& truth, double noise_mm, uint64_t seed,
   const test::StandInScan scan = test::ScanLikeAKinect(truth, scan_options);
   CaseResult out;
   out.points = scan.points.size();
-  const ReconstructionResult result = ReconstructTree(scan.points, "stand-in", options);
+  const reconstruction::ReconstructionResult result =
+      reconstruction::ReconstructTree(scan.points, "stand-in", options);
   out.seconds = result.times.total_s;
-  out.scores = ScoreAgainstTruth(result.tree, truth);
+  out.scores = eval::ScoreAgainstTruth(result.tree, truth);
   if (!picture.empty()) {
-    ReconstructionPlotOptions plot;
+    reconstruction::ReconstructionPlotOptions plot;
     plot.title = fmt::format("stand-in scan, noise {} mm at 2 m, seed {}", noise_mm, seed);
-    plot.caption = {FormatTruthScores(out.scores).substr(0, 140),
-                    FormatTruthScores(out.scores).substr(140)};
-    WriteReconstructionPlot(result.tree, scan.points, picture, plot);
+    plot.caption = {eval::FormatTruthScores(out.scores).substr(0, 140),
+                    eval::FormatTruthScores(out.scores).substr(140)};
+    reconstruction::WriteReconstructionPlot(result.tree, scan.points, picture, plot);
     plot.title = "the true tree over the same scan";
     plot.caption = {};
     const std::string truth_picture = picture.substr(0, picture.size() - 4) + "_truth.png";
-    WriteReconstructionPlot(truth, scan.points, truth_picture, plot);
+    reconstruction::WriteReconstructionPlot(truth, scan.points, truth_picture, plot);
     // The grown skeleton over the attraction points.
-    Skeleton grown = result.grown;
-    for (SkeletonNode& n : grown.nodes) n.radius = 0.002;
+    reconstruction::Skeleton grown = result.grown;
+    for (reconstruction::SkeletonNode& n : grown.nodes) n.radius = 0.002;
     std::vector<Eigen::Vector3d> attraction;
-    for (const AttractionPoint& a : result.attraction) attraction.push_back(a.position);
+    for (const reconstruction::AttractionPoint& a : result.attraction)
+      attraction.push_back(a.position);
     plot.title = "grown skeleton over the attraction points";
     plot.point_size = 5;
-    WriteReconstructionPlot(DecomposeIntoBranches(grown), attraction,
-                            picture.substr(0, picture.size() - 4) + "_grown.png", plot);
+    reconstruction::WriteReconstructionPlot(
+        reconstruction::DecomposeIntoBranches(grown), attraction,
+        picture.substr(0, picture.size() - 4) + "_grown.png", plot);
   }
   return out;
 }
@@ -151,14 +154,15 @@ void StandInCase(const std::string& tree, double noise_mm, uint64_t seed,
                  const std::string& picture, int views) {
   spdlog::set_level(spdlog::level::debug);
   const CaseResult r = RunStandIn(TrueTree(tree), noise_mm, seed, {}, picture, views);
-  std::printf("%zu points, %.3f s\n%s\n", r.points, r.seconds, FormatTruthScores(r.scores).c_str());
-  for (const BranchMatch& m : r.scores.truth) {
+  std::printf("%zu points, %.3f s\n%s\n", r.points, r.seconds,
+              eval::FormatTruthScores(r.scores).c_str());
+  for (const eval::BranchMatch& m : r.scores.truth) {
     if (m.scored && !m.found) {
       std::printf("  missed true branch %d (level %d, %.2f m, r %.3f m, near %.2f)\n", m.branch,
                   m.level, m.length_m, m.base_radius_m, m.near_share);
     }
   }
-  for (const BranchMatch& m : r.scores.reconstruction) {
+  for (const eval::BranchMatch& m : r.scores.reconstruction) {
     if (m.scored && !m.found) {
       std::printf("  wrong branch %d (level %d, %.2f m, near %.2f)\n", m.branch, m.level,
                   m.length_m, m.near_share);
@@ -168,51 +172,58 @@ void StandInCase(const std::string& tree, double noise_mm, uint64_t seed,
 
 struct Variant {
   const char* name;
-  ReconstructionOptions options;
+  reconstruction::ReconstructionOptions options;
 };
 
 std::vector<Variant> Variants() {
   std::vector<Variant> v;
   auto add = [&](const char* name, auto change) {
-    ReconstructionOptions o;
+    reconstruction::ReconstructionOptions o;
     change(o);
     v.push_back({name, o});
   };
-  add("all improvements", [](ReconstructionOptions&) {});
+  add("all improvements", [](reconstruction::ReconstructionOptions&) {});
   add("raw points as attraction points",
-      [](ReconstructionOptions& o) { o.medial_samples = false; });
-  add("no arc merging", [](ReconstructionOptions& o) { o.merge_per_spread = 0.0; });
-  add("no perception cone",
-      [](ReconstructionOptions& o) { o.colonization.perception_half_angle_rad = 4.0; });
+      [](reconstruction::ReconstructionOptions& o) { o.medial_samples = false; });
+  add("no arc merging", [](reconstruction::ReconstructionOptions& o) { o.merge_per_spread = 0.0; });
+  add("no perception cone", [](reconstruction::ReconstructionOptions& o) {
+    o.colonization.perception_half_angle_rad = 4.0;
+  });
   add("with direction smoothing 0.3",
-      [](ReconstructionOptions& o) { o.colonization.direction_smoothing = 0.3; });
-  add("no thickness-scaled radii", [](ReconstructionOptions& o) {
+      [](reconstruction::ReconstructionOptions& o) { o.colonization.direction_smoothing = 0.3; });
+  add("no thickness-scaled radii", [](reconstruction::ReconstructionOptions& o) {
     o.colonization.influence_per_thickness = 0.0;
     o.colonization.kill_per_thickness = 0.0;
     o.colonization.kill_per_node_thickness = 0.0;
   });
   add("no geodesic consistency",
-      [](ReconstructionOptions& o) { o.colonization.geodesic_slack_m = -1.0; });
-  add("no gap bridging", [](ReconstructionOptions& o) {
+      [](reconstruction::ReconstructionOptions& o) { o.colonization.geodesic_slack_m = -1.0; });
+  add("no gap bridging", [](reconstruction::ReconstructionOptions& o) {
     o.colonization.bridge_gap_m = 0.0;
     o.scale.max_gap_m = 1e-3;
   });
-  add("no recentring", [](ReconstructionOptions& o) { o.colonization.recenter = false; });
-  add("no twig pruning", [](ReconstructionOptions& o) { o.prune = false; });
-  add("no skeleton smoothing", [](ReconstructionOptions& o) { o.smoothing.iterations = 0; });
-  add("skeleton smoothing: 2 rounds", [](ReconstructionOptions& o) { o.smoothing.iterations = 2; });
-  add("skeleton smoothing: 8 rounds", [](ReconstructionOptions& o) { o.smoothing.iterations = 8; });
-  add("no local radius fits", [](ReconstructionOptions& o) { o.radii.local_fits = false; });
+  add("no recentring",
+      [](reconstruction::ReconstructionOptions& o) { o.colonization.recenter = false; });
+  add("no twig pruning", [](reconstruction::ReconstructionOptions& o) { o.prune = false; });
+  add("no skeleton smoothing",
+      [](reconstruction::ReconstructionOptions& o) { o.smoothing.iterations = 0; });
+  add("skeleton smoothing: 2 rounds",
+      [](reconstruction::ReconstructionOptions& o) { o.smoothing.iterations = 2; });
+  add("skeleton smoothing: 8 rounds",
+      [](reconstruction::ReconstructionOptions& o) { o.smoothing.iterations = 8; });
+  add("no local radius fits",
+      [](reconstruction::ReconstructionOptions& o) { o.radii.local_fits = false; });
   add("pipe exponent 2.0 (da Vinci)",
-      [](ReconstructionOptions& o) { o.radii.pipe_exponent = 2.0; });
-  add("pipe exponent 3.0", [](ReconstructionOptions& o) { o.radii.pipe_exponent = 3.0; });
+      [](reconstruction::ReconstructionOptions& o) { o.radii.pipe_exponent = 2.0; });
+  add("pipe exponent 3.0",
+      [](reconstruction::ReconstructionOptions& o) { o.radii.pipe_exponent = 3.0; });
   add("MSAC radius as trunk anchor (not the slice median)",
-      [](ReconstructionOptions& o) { o.anchor_on_slices = false; });
+      [](reconstruction::ReconstructionOptions& o) { o.anchor_on_slices = false; });
   add("trunk fitted on the working voxel means (not the cloud's points)",
-      [](ReconstructionOptions& o) { o.trunk_on_full_cloud = false; });
+      [](reconstruction::ReconstructionOptions& o) { o.trunk_on_full_cloud = false; });
   add("no scene cleanup (sparse returns, objects on the ground)",
-      [](ReconstructionOptions& o) { o.clean_scene = false; });
-  add("fixed lengths (not from spacing)", [](ReconstructionOptions& o) {
+      [](reconstruction::ReconstructionOptions& o) { o.clean_scene = false; });
+  add("fixed lengths (not from spacing)", [](reconstruction::ReconstructionOptions& o) {
     // What the derivation gives a typical merged Kinect cloud, used for every cloud.
     o.scale = {.voxel_m = 0.012,
                .neighbour_radius_m = 0.036,
@@ -227,7 +238,7 @@ std::vector<Variant> Variants() {
 }
 
 // The options of the first ablation variant whose name contains `name`.
-ReconstructionOptions VariantOptions(const std::string& name) {
+reconstruction::ReconstructionOptions VariantOptions(const std::string& name) {
   for (const Variant& v : Variants()) {
     if (std::string(v.name).find(name) != std::string::npos) return v.options;
   }
@@ -267,16 +278,18 @@ void Ablation(const std::string& only) {
     MeanScores mean;
     double t = 0;
     for (const Scan& s : scans) {
-      const ReconstructionResult r = ReconstructTree(s.points, s.name, v.options);
-      const TruthScores sc = ScoreAgainstTruth(r.tree, s.truth);
+      const reconstruction::ReconstructionResult r =
+          reconstruction::ReconstructTree(s.points, s.name, v.options);
+      const eval::TruthScores sc = eval::ScoreAgainstTruth(r.tree, s.truth);
       const double n = static_cast<double>(scans.size());
       mean.Add(sc, n);
       t += r.times.total_s / n;
     }
     double within = 0, real_mean = 0;
     for (size_t k = 0; k < real.size(); ++k) {
-      const ReconstructionResult r = ReconstructTree(real[k].points_, kRealScans[k], v.options);
-      const CloudFitScores fit = ScoreAgainstCloud(r.tree, real[k].points_);
+      const reconstruction::ReconstructionResult r =
+          reconstruction::ReconstructTree(real[k].points_, kRealScans[k], v.options);
+      const eval::CloudFitScores fit = eval::ScoreAgainstCloud(r.tree, real[k].points_);
       within += fit.share_within / real.size();
       real_mean += fit.mean_distance_m / real.size();
     }
@@ -293,8 +306,9 @@ void RealTable() {
       "| time |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n");
   for (const char* name : kRealScans) {
     const auto cloud = ReadPointCloud(SharedData(std::string("real-scans/") + name));
-    const ReconstructionResult result = ReconstructTree(cloud.points_, name, {});
-    const CloudFitScores fit = ScoreAgainstCloud(result.tree, cloud.points_);
+    const reconstruction::ReconstructionResult result =
+        reconstruction::ReconstructTree(cloud.points_, name, {});
+    const eval::CloudFitScores fit = eval::ScoreAgainstCloud(result.tree, cloud.points_);
     std::string levels;
     for (size_t l = 0; l < fit.branches_by_level.size(); ++l) {
       levels += fmt::format("{}{}", l ? "/" : "", fit.branches_by_level[l]);
@@ -310,11 +324,13 @@ void ScoreSynth(const std::string& cloud_path, const std::string& truth_path,
                 const std::string& picture) {
   const auto cloud = ReadPointCloud(cloud_path);
   const Tree truth = ReadTreeFile(truth_path);
-  const ReconstructionResult result = ReconstructTree(cloud.points_, cloud_path, {});
-  const TruthScores scores = ScoreAgainstTruth(result.tree, truth);
-  std::printf("%s\n%s\ntime %.3f s\n", cloud_path.c_str(), FormatTruthScores(scores).c_str(),
+  const reconstruction::ReconstructionResult result =
+      reconstruction::ReconstructTree(cloud.points_, cloud_path, {});
+  const eval::TruthScores scores = eval::ScoreAgainstTruth(result.tree, truth);
+  std::printf("%s\n%s\ntime %.3f s\n", cloud_path.c_str(), eval::FormatTruthScores(scores).c_str(),
               result.times.total_s);
-  if (!picture.empty()) WriteReconstructionPlot(result.tree, cloud.points_, picture);
+  if (!picture.empty())
+    reconstruction::WriteReconstructionPlot(result.tree, cloud.points_, picture);
 }
 
 // Every measured pixel of every scan view, in the world frame of the true camera poses: the cloud a
@@ -344,7 +360,7 @@ std::vector<Eigen::Vector3d> MergeViewsWithTruePoses(const std::filesystem::path
 }
 
 void SynthTable(const std::vector<std::string>& captures, const std::string& picture_dir,
-                const ReconstructionOptions& options) {
+                const reconstruction::ReconstructionOptions& options) {
   std::printf(
       "| capture | points | recall | precision | skeleton distance | (true side >= 1 cm only) "
       "| radius error | trunk radius error | length error | true / found branches >= 1 cm "
@@ -354,8 +370,9 @@ void SynthTable(const std::vector<std::string>& captures, const std::string& pic
     const std::vector<Eigen::Vector3d> points = MergeViewsWithTruePoses(root);
     const Tree truth = ReadTreeFile(std::filesystem::path(root) / "gt" / "tree.json");
     const std::string name = std::filesystem::path(root).filename().string();
-    const ReconstructionResult result = ReconstructTree(points, name, options);
-    const TruthScores sc = ScoreAgainstTruth(result.tree, truth);
+    const reconstruction::ReconstructionResult result =
+        reconstruction::ReconstructTree(points, name, options);
+    const eval::TruthScores sc = eval::ScoreAgainstTruth(result.tree, truth);
     std::printf(
         "| %s | %zu | %.3f | %.3f | %.1f mm | %.1f mm | %.3f | %.3f | %+.3f | %d / %d | %.2f s |\n",
         name.c_str(), points.size(), sc.recall, sc.precision, 1e3 * sc.mean_skeleton_distance_m,
@@ -364,13 +381,16 @@ void SynthTable(const std::vector<std::string>& captures, const std::string& pic
     std::fflush(stdout);
     mean.Add(sc, static_cast<double>(captures.size()));
     if (!picture_dir.empty()) {
-      ReconstructionPlotOptions plot;
+      reconstruction::ReconstructionPlotOptions plot;
       plot.title = name + ": views merged with the true poses";
-      plot.caption = {FormatTruthScores(sc).substr(0, 140), FormatTruthScores(sc).substr(140)};
-      WriteReconstructionPlot(result.tree, points, picture_dir + "/" + name + ".png", plot);
+      plot.caption = {eval::FormatTruthScores(sc).substr(0, 140),
+                      eval::FormatTruthScores(sc).substr(140)};
+      reconstruction::WriteReconstructionPlot(result.tree, points,
+                                              picture_dir + "/" + name + ".png", plot);
       plot.title = name + ": the true tree";
       plot.caption = {};
-      WriteReconstructionPlot(truth, points, picture_dir + "/" + name + "_truth.png", plot);
+      reconstruction::WriteReconstructionPlot(truth, points,
+                                              picture_dir + "/" + name + "_truth.png", plot);
     }
   }
   std::printf("| **mean** | | %.3f | %.3f | %.1f mm | %.1f mm | %.3f | %.3f | %+.3f | | |\n",
@@ -382,7 +402,8 @@ void BM_RealScan(benchmark::State& state) {
   const std::string name = kRealScans[state.range(0)];
   const auto cloud = ReadPointCloud(SharedData("real-scans/" + name));
   for (auto _ : state) {
-    const ReconstructionResult result = ReconstructTree(cloud.points_, name, {});
+    const reconstruction::ReconstructionResult result =
+        reconstruction::ReconstructTree(cloud.points_, name, {});
     benchmark::DoNotOptimize(result.tree.size());
   }
   state.SetLabel(name);
@@ -402,7 +423,8 @@ void BM_Cloud200k(benchmark::State& state) {
     points.push_back(scan.points[i]);
   }
   for (auto _ : state) {
-    const ReconstructionResult result = ReconstructTree(points, "200k", {});
+    const reconstruction::ReconstructionResult result =
+        reconstruction::ReconstructTree(points, "200k", {});
     benchmark::DoNotOptimize(result.tree.size());
   }
   state.SetLabel(fmt::format("{} points", points.size()));

@@ -7,15 +7,15 @@
 #include <oneapi/tbb/global_control.h>
 
 #include "registration/stand_in_scene.h"
-#include "simtree/registration/pairwise.h"
-#include "simtree/scan/depth_to_cloud.h"
+#include "simtree/preprocessing/depth_to_cloud.h"
+#include "simtree/registration/detail/pairwise.h"
 
 namespace simtree {
 namespace {
 
 struct Bench {
-  std::vector<PreprocessResult> preprocessed;
-  std::vector<RegistrationView> views;
+  std::vector<preprocessing::PreprocessResult> preprocessed;
+  std::vector<registration::RegistrationView> views;
 };
 
 const Bench& Scene() {
@@ -31,8 +31,8 @@ const Bench& Scene() {
     for (size_t v = 0; v < poses.size(); ++v) {
       const RgbdImage image =
           test::RenderStandInView(tree, poses[v].world_from_camera, options, 1000 + v);
-      b.preprocessed.push_back(PreprocessView(DepthToCloud(image)));
-      b.views.push_back(PrepareView(poses[v].name, b.preprocessed.back()));
+      b.preprocessed.push_back(preprocessing::PreprocessView(preprocessing::DepthToCloud(image)));
+      b.views.push_back(registration::PrepareView(poses[v].name, b.preprocessed.back()));
     }
     return b;
   }();
@@ -43,7 +43,7 @@ void BM_PrepareView(benchmark::State& state) {
   oneapi::tbb::global_control threads(oneapi::tbb::global_control::max_allowed_parallelism,
                                       state.range(0));
   const auto& pre = Scene().preprocessed[0];
-  for (auto _ : state) benchmark::DoNotOptimize(PrepareView("view", pre));
+  for (auto _ : state) benchmark::DoNotOptimize(registration::PrepareView("view", pre));
   state.counters["points"] = static_cast<double>(pre.cloud.points_.size());
 }
 BENCHMARK(BM_PrepareView)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -52,8 +52,9 @@ void BM_RegisterPair(benchmark::State& state) {
   oneapi::tbb::global_control threads(oneapi::tbb::global_control::max_allowed_parallelism, 2);
   const auto& views = Scene().views;
   const int gap = static_cast<int>(state.range(0));  // in steps of 36 degrees
-  const PairOptions options;
-  for (auto _ : state) benchmark::DoNotOptimize(RegisterPair(views[gap], views[0], options));
+  const registration::PairOptions options;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(registration::RegisterPair(views[gap], views[0], options));
   state.SetLabel(std::to_string(36 * gap) + " deg apart");
 }
 BENCHMARK(BM_RegisterPair)->Arg(1)->Arg(5)->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -63,9 +64,9 @@ void BM_Preprocess(benchmark::State& state) {
                                        "/authors-demo/tree_model/tree01.txt");
   test::StandInOptions options;
   const auto poses = test::StandInPoses(3.0, options);
-  const auto cloud =
-      DepthToCloud(test::RenderStandInView(tree, poses[0].world_from_camera, options, 1));
-  for (auto _ : state) benchmark::DoNotOptimize(PreprocessView(cloud));
+  const auto cloud = preprocessing::DepthToCloud(
+      test::RenderStandInView(tree, poses[0].world_from_camera, options, 1));
+  for (auto _ : state) benchmark::DoNotOptimize(preprocessing::PreprocessView(cloud));
   state.counters["raw_points"] = static_cast<double>(cloud.points_.size());
 }
 BENCHMARK(BM_Preprocess)->Unit(benchmark::kMillisecond)->UseRealTime();

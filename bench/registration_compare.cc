@@ -36,10 +36,10 @@
 #include "simtree/core/tree_json.h"
 #include "simtree/eval/registration_metrics.h"
 #include "simtree/io/ground_truth.h"
+#include "simtree/preprocessing/preprocess.h"
 #include "simtree/registration/baselines.h"
-#include "simtree/registration/pairwise.h"
-#include "simtree/scan/capture_views.h"
-#include "simtree/synth/synth_capture.h"
+#include "simtree/registration/detail/pairwise.h"
+#include "simtree/synth/synth.h"
 
 namespace fs = std::filesystem;
 using namespace simtree;
@@ -54,7 +54,7 @@ double Since(Clock::time_point start) {
 // One capture with its truth, preprocessed.
 struct Scene {
   std::string label;
-  std::vector<PreprocessedView> views;
+  std::vector<preprocessing::PreprocessedView> views;
   std::vector<ViewPose> poses;
   std::vector<Eigen::Vector3d> tree_points;
 };
@@ -62,9 +62,9 @@ struct Scene {
 Scene FromCapture(const fs::path& root, const std::string& label) {
   Scene scene;
   scene.label = label;
-  scene.views = PreprocessCaptureViews(OpenCapture(root));
+  scene.views = preprocessing::PreprocessCaptureViews(OpenCapture(root));
   scene.poses = ReadScanPoses(root / "gt" / "scan_poses.json");
-  scene.tree_points = TreeSamplePoints(ReadTreeJson(root / "gt" / "tree.json"));
+  scene.tree_points = eval::TreeSamplePoints(ReadTreeJson(root / "gt" / "tree.json"));
   if (scene.poses.size() != scene.views.size()) {
     throw InputError(root.string(), "gt/scan_poses.json", "expected one pose per view");
   }
@@ -76,7 +76,7 @@ Scene FromStandIn(const std::string& tree_file, uint64_t seed) {
   scene.label = fmt::format("stand-in {} seed {}", tree_file, seed);
   const Tree tree = test::LoadDemoTree(fs::path(SIMTREE_SHARED_DATA_DIR) / "authors-demo" /
                                        "tree_model" / tree_file);
-  scene.tree_points = TreeSamplePoints(tree);
+  scene.tree_points = eval::TreeSamplePoints(tree);
   test::StandInOptions options;
   options.seed = seed;
   Eigen::Vector3d lo, hi;
@@ -85,9 +85,9 @@ Scene FromStandIn(const std::string& tree_file, uint64_t seed) {
   for (size_t v = 0; v < scene.poses.size(); ++v) {
     const RgbdImage image =
         test::RenderStandInView(tree, scene.poses[v].world_from_camera, options, seed * 1000 + v);
-    PreprocessedView view;
+    preprocessing::PreprocessedView view;
     view.name = scene.poses[v].name;
-    view.result = PreprocessView(DepthToCloud(image), {}, view.name);
+    view.result = preprocessing::PreprocessView(preprocessing::DepthToCloud(image), {}, view.name);
     scene.views.push_back(std::move(view));
   }
   return scene;
@@ -103,7 +103,7 @@ struct Outcome {
   double seconds = 0;
   double rmse_m = 0;      // the paper's RMSE over matched points
   double match_rate = 0;  // the paper's match rate
-  PoseError error;
+  eval::PoseError error;
   bool accepted = true;  // for ours: passed its own checks
   // The tree centroid's displacement in the target camera's frame (x right, y down, z forward).
   Eigen::Vector3d centroid_shift = Eigen::Vector3d::Zero();
@@ -112,7 +112,8 @@ struct Outcome {
   double yaw_error_deg = 0, tilt_error_deg = 0;
   // The rotation error as a vector (degrees) in the target camera's frame.
   Eigen::Vector3d rotation_error_target = Eigen::Vector3d::Zero();
-  const PairResult* checks = nullptr;  // for ours: what its checks measured (while `pairs` lives)
+  const registration::PairResult* checks =
+      nullptr;  // for ours: what its checks measured (while `pairs` lives)
 };
 
 int GapBin(double angle_deg) {
@@ -172,7 +173,7 @@ int main(int argc, char** argv) {
   fs::path cache = fs::temp_directory_path() / "simtree_registration_bench";
   bool skip_baselines = false, skip_table1 = false, ablations = false, fine_study = false;
   bool views_only = false, skip_paper = false, fine_from_truth = false, old_medial = false;
-  double screen_below_overlap = PairOptions{}.screen_below_overlap;
+  double screen_below_overlap = registration::PairOptions{}.screen_below_overlap;
   std::vector<std::string> only_pairs;
   app.add_option("--synth-seeds", synth_seeds,
                  "Synthetic captures to make (seeds from --first-seed)");
@@ -220,13 +221,13 @@ int main(int argc, char** argv) {
     const uint64_t seed = first_seed + s;
     const fs::path dir = cache / fmt::format("{}_seed{}", species, seed);
     if (!fs::exists(dir / "gt" / "scan_poses.json")) {
-      SynthOptions options;
+      synth::SynthOptions options;
       options.species = species;
       options.seed = seed;
       options.duration_s = 4.5;  // the pull stream is not used here: just past its release
       options.contact_sheet = false;
       fmt::print(stderr, "synth {} seed {} -> {}\n", species, seed, dir.string());
-      RunSynth(options, dir);
+      synth::RunSynth(options, dir);
     }
     scenes.push_back(FromCapture(dir, fmt::format("synth {} seed {}", species, seed)));
   }
@@ -237,31 +238,34 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  PairOptions default_options;
+  registration::PairOptions default_options;
   default_options.screen_below_overlap = screen_below_overlap;
-  RegistrationViewOptions view_options;
+  registration::RegistrationViewOptions view_options;
   if (old_medial) {
     default_options.medial.rotation = false;
     view_options.projection.silhouette = false;
   }
   std::vector<Outcome> outcomes;
-  std::deque<PairResult> ours_results;  // what ours' checks measured, for the JSON
+  std::deque<registration::PairResult> ours_results;  // what ours' checks measured, for the JSON
   auto record = [&](const Scene& scene, size_t s, size_t t, const std::string& method,
-                    const Eigen::Isometry3d& transform, double seconds, const RegistrationView& vs,
-                    const RegistrationView& vt, bool accepted) {
+                    const Eigen::Isometry3d& transform, double seconds,
+                    const registration::RegistrationView& vs,
+                    const registration::RegistrationView& vt, bool accepted) {
     Outcome o;
     o.method = method;
     o.scene = scene.label;
     o.source = scene.views[s].name;
     o.target = scene.views[t].name;
-    o.angle_deg = ViewAngleDeg(scene.poses[s].world_from_camera, scene.poses[t].world_from_camera);
+    o.angle_deg =
+        eval::ViewAngleDeg(scene.poses[s].world_from_camera, scene.poses[t].world_from_camera);
     o.gap_deg = GapBin(o.angle_deg);
     o.seconds = seconds;
-    const Overlap match = PaperMatch(vs, vt, transform, default_options);
+    const registration::Overlap match =
+        registration::PaperMatch(vs, vt, transform, default_options);
     o.rmse_m = match.rmse_m;
     o.match_rate = match.share;
-    o.error = PairPoseError(transform, scene.poses[s].world_from_camera,
-                            scene.poses[t].world_from_camera, scene.tree_points);
+    o.error = eval::PairPoseError(transform, scene.poses[s].world_from_camera,
+                                  scene.poses[t].world_from_camera, scene.tree_points);
     o.accepted = accepted;
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
     for (const Eigen::Vector3d& p : scene.tree_points) centroid += p;
@@ -282,15 +286,16 @@ int main(int argc, char** argv) {
     outcomes.push_back(o);
   };
 
-  const std::vector<CoarseInput> table1_inputs = {CoarseInput::kEntireTree, CoarseInput::kKeyRegion,
-                                                  CoarseInput::kTreeSkeleton,
-                                                  CoarseInput::kKeyRegionSkeleton};
+  const std::vector<registration::CoarseInput> table1_inputs = {
+      registration::CoarseInput::kEntireTree, registration::CoarseInput::kKeyRegion,
+      registration::CoarseInput::kTreeSkeleton, registration::CoarseInput::kKeyRegionSkeleton};
   for (size_t k = 0; k < scenes.size(); ++k) {
     const Scene& scene = scenes[k];
     fmt::print(stderr, "{}: {} views\n", scene.label, scene.views.size());
     const size_t n = scene.views.size();
-    auto prepare = [&](const RegistrationViewOptions& options, std::vector<double>& seconds) {
-      std::vector<RegistrationView> views(n);
+    auto prepare = [&](const registration::RegistrationViewOptions& options,
+                       std::vector<double>& seconds) {
+      std::vector<registration::RegistrationView> views(n);
       seconds.assign(n, 0.0);
       for (size_t v = 0; v < n; ++v) {
         if (!scene.views[v].result) {
@@ -299,17 +304,17 @@ int main(int argc, char** argv) {
           continue;
         }
         const auto start = Clock::now();
-        views[v] = PrepareView(scene.views[v].name, *scene.views[v].result, options);
+        views[v] = registration::PrepareView(scene.views[v].name, *scene.views[v].result, options);
         seconds[v] = Since(start);
       }
       return views;
     };
     std::vector<double> prep_seconds;
-    const std::vector<RegistrationView> ours = prepare(view_options, prep_seconds);
+    const std::vector<registration::RegistrationView> ours = prepare(view_options, prep_seconds);
     if (views_only) {
       // A trunk or key region found wrong in one view stands out: the others agree in the world.
       for (size_t v = 0; v < n; ++v) {
-        const RegistrationView& view = ours[v];
+        const registration::RegistrationView& view = ours[v];
         if (!view.trunk || !view.key_region) {
           fmt::print("{} {}: {}\n", scene.label, view.name, view.failure);
           continue;
@@ -318,7 +323,7 @@ int main(int argc, char** argv) {
         const Eigen::Vector3d base = w * view.trunk->base;
         const Eigen::Vector3d fork = w * view.trunk->branch_point;
         const Eigen::Vector3d key = w * view.key_region->center;
-        const Eigen::Vector3d axis = w.linear() * TrunkAxis(view);
+        const Eigen::Vector3d axis = w.linear() * registration::TrunkAxis(view);
         double ground_z = std::numeric_limits<double>::quiet_NaN();
         if (view.ground) {
           ground_z = (w * (view.trunk->base -
@@ -333,8 +338,9 @@ int main(int argc, char** argv) {
             view.trunk->fork_found, key.x(), key.y(), key.z(), view.key_region->radius_m,
             std::acos(std::clamp(axis.z(), -1.0, 1.0)) * 180.0 / std::numbers::pi,
             view.trunk->cylinder.has_value(), ground_z,
-            HeightOf(view, view.trunk->branch_point, true),
-            HeightOf(view, view.trunk->branch_point, false), view.coarse.points_.size());
+            registration::HeightOf(view, view.trunk->branch_point, true),
+            registration::HeightOf(view, view.trunk->branch_point, false),
+            view.coarse.points_.size());
       }
       continue;
     }
@@ -350,39 +356,40 @@ int main(int argc, char** argv) {
     }
 
     // Ours, and ours without the priors (the paper's method as written, same code otherwise).
-    PairOptions paper_options;
+    registration::PairOptions paper_options;
     paper_options.up_prior = paper_options.center_prior = paper_options.snap_to_priors = false;
     paper_options.trunk_axis_weight = paper_options.ground_weight = 0.0;
     paper_options.retry_other_key_regions = paper_options.retry_with_shifts = false;
     for (const auto& [s, t] : fine_from_truth ? decltype(pairs){} : pairs) {
-      const PairResult& r =
-          ours_results.emplace_back(RegisterPair(ours[s], ours[t], default_options));
+      const registration::PairResult& r =
+          ours_results.emplace_back(registration::RegisterPair(ours[s], ours[t], default_options));
       record(scene, s, t, "ours", r.target_from_source,
              prep_seconds[s] + prep_seconds[t] + r.seconds, ours[s], ours[t], r.ok);
       outcomes.back().checks = &r;
       if (skip_paper) continue;
-      const PairResult p = RegisterPair(ours[s], ours[t], paper_options);
+      const registration::PairResult p =
+          registration::RegisterPair(ours[s], ours[t], paper_options);
       record(scene, s, t, "ours without priors", p.target_from_source,
              prep_seconds[s] + prep_seconds[t] + p.seconds, ours[s], ours[t], p.ok);
     }
     // Which prior helps and which hurts (an uneven ground is not one plane from every side):
     // each left out, or (those off by default) put back, in turn.
     if (ablations) {
-      std::vector<std::pair<std::string, PairOptions>> variants;
+      std::vector<std::pair<std::string, registration::PairOptions>> variants;
       auto add = [&](const std::string& name, auto change) {
-        PairOptions o = default_options;
+        registration::PairOptions o = default_options;
         change(o);
         variants.emplace_back("ours, " + name, o);
       };
-      add("ground as up", [](PairOptions& o) { o.ground_as_up = true; });
-      add("ground constraint", [](PairOptions& o) { o.ground_weight = 0.5; });
-      add("trunk constraint", [](PairOptions& o) { o.trunk_axis_weight = 1.0; });
-      add("no snap", [](PairOptions& o) { o.snap_to_priors = false; });
-      add("no turned alternative", [](PairOptions& o) { o.turned_refinements = 0; });
+      add("ground as up", [](registration::PairOptions& o) { o.ground_as_up = true; });
+      add("ground constraint", [](registration::PairOptions& o) { o.ground_weight = 0.5; });
+      add("trunk constraint", [](registration::PairOptions& o) { o.trunk_axis_weight = 1.0; });
+      add("no snap", [](registration::PairOptions& o) { o.snap_to_priors = false; });
+      add("no turned alternative", [](registration::PairOptions& o) { o.turned_refinements = 0; });
       for (const auto& [s, t] : pairs) {
         const double prep = prep_seconds[s] + prep_seconds[t];
         for (const auto& [name, options] : variants) {
-          const PairResult r = RegisterPair(ours[s], ours[t], options);
+          const registration::PairResult r = registration::RegisterPair(ours[s], ours[t], options);
           record(scene, s, t, name, r.target_from_source, prep + r.seconds, ours[s], ours[t], r.ok);
         }
       }
@@ -393,71 +400,78 @@ int main(int argc, char** argv) {
     if (fine_from_truth) {
       // Ours' fine stage and variants of it from the true pose (docs/registration.md, "The tilt
       // that remains"): what is left of the error there is the fine stage's own bias.
-      RegistrationViewOptions normal_lines_options = view_options;
+      registration::RegistrationViewOptions normal_lines_options = view_options;
       normal_lines_options.projection.silhouette = false;
       std::vector<double> unused;
-      const std::vector<RegistrationView> normal_lines = prepare(normal_lines_options, unused);
+      const std::vector<registration::RegistrationView> normal_lines =
+          prepare(normal_lines_options, unused);
       struct Variant {
         std::string name;
-        PairOptions options;
-        const std::vector<RegistrationView>* views;
+        registration::PairOptions options;
+        const std::vector<registration::RegistrationView>* views;
       };
       std::vector<Variant> fine_variants = {{"", default_options, &ours}};
       auto add = [&](const std::string& name, bool silhouette, auto change) {
-        PairOptions o = default_options;
+        registration::PairOptions o = default_options;
         change(o);
         fine_variants.push_back({", " + name, o, silhouette ? &ours : &normal_lines});
       };
-      add("one way", true, [](PairOptions& o) { o.symmetric_fine = false; });
-      add("symmetric objective", true,
-          [](PairOptions& o) { o.icp.objective = IcpObjective::kSymmetric; });
-      add("medial shift only", true, [](PairOptions& o) { o.medial.rotation = false; });
-      add("normal-line axis points", false, [](PairOptions&) {});
+      add("one way", true, [](registration::PairOptions& o) { o.symmetric_fine = false; });
+      add("symmetric objective", true, [](registration::PairOptions& o) {
+        o.icp.objective = registration::IcpObjective::kSymmetric;
+      });
+      add("medial shift only", true,
+          [](registration::PairOptions& o) { o.medial.rotation = false; });
+      add("normal-line axis points", false, [](registration::PairOptions&) {});
       add("before (normal-line axis points, medial shift only)", false,
-          [](PairOptions& o) { o.medial.rotation = false; });
-      add("before, one way", false, [](PairOptions& o) {
+          [](registration::PairOptions& o) { o.medial.rotation = false; });
+      add("before, one way", false, [](registration::PairOptions& o) {
         o.medial.rotation = false;
         o.symmetric_fine = false;
       });
-      add("before, symmetric objective", false, [](PairOptions& o) {
+      add("before, symmetric objective", false, [](registration::PairOptions& o) {
         o.medial.rotation = false;
-        o.icp.objective = IcpObjective::kSymmetric;
+        o.icp.objective = registration::IcpObjective::kSymmetric;
       });
       for (const auto& [s, t] : pairs) {
         if (!ours[s].CanRegister() || !ours[t].CanRegister()) continue;
         const Eigen::Isometry3d truth =
             scene.poses[t].world_from_camera.inverse() * scene.poses[s].world_from_camera;
         for (const Variant& v : fine_variants) {
-          const RegistrationView& vs = (*v.views)[s];
-          const RegistrationView& vt = (*v.views)[t];
+          const registration::RegistrationView& vs = (*v.views)[s];
+          const registration::RegistrationView& vt = (*v.views)[t];
           const auto begin = Clock::now();
-          FineResult fine = RefinePair(vs, vt, truth, v.options);
-          if (v.options.symmetric_fine) fine = AverageWithReverse(vs, vt, fine, v.options);
+          registration::FineResult fine = registration::RefinePair(vs, vt, truth, v.options);
+          if (v.options.symmetric_fine)
+            fine = registration::AverageWithReverse(vs, vt, fine, v.options);
           record(scene, s, t, "ours' fine" + v.name + " from truth", fine.icp.target_from_source,
                  Since(begin), ours[s], ours[t], true);
         }
       }
     }
     if (fine_study) {
-      PairOptions coarse_only = default_options;
+      registration::PairOptions coarse_only = default_options;
       coarse_only.run_icp = false;
-      std::vector<std::pair<std::string, PairOptions>> fine_variants = {
+      std::vector<std::pair<std::string, registration::PairOptions>> fine_variants = {
           {"", default_options}, {" without priors", paper_options}};
       auto add_variant = [&](const std::string& name, auto change) {
-        PairOptions o = paper_options;
+        registration::PairOptions o = paper_options;
         change(o);
         fine_variants.emplace_back(" without priors, " + name, o);
       };
       auto add_ours = [&](const std::string& name, auto change) {
-        PairOptions o = default_options;
+        registration::PairOptions o = default_options;
         change(o);
         fine_variants.emplace_back(", " + name, o);
       };
-      add_ours("one way", [](PairOptions& o) { o.symmetric_fine = false; });
-      add_variant("45-deg normal gate", [](PairOptions& o) { o.icp.max_normal_angle_deg = 45; });
-      add_variant("no medial shift", [](PairOptions& o) { o.medial_distance_factors.clear(); });
-      add_variant("trunk constraint", [](PairOptions& o) { o.trunk_axis_weight = 1.0; });
-      add_variant("Open3D's settings, no medial shift", [](PairOptions& o) {
+      add_ours("one way", [](registration::PairOptions& o) { o.symmetric_fine = false; });
+      add_variant("45-deg normal gate",
+                  [](registration::PairOptions& o) { o.icp.max_normal_angle_deg = 45; });
+      add_variant("no medial shift",
+                  [](registration::PairOptions& o) { o.medial_distance_factors.clear(); });
+      add_variant("trunk constraint",
+                  [](registration::PairOptions& o) { o.trunk_axis_weight = 1.0; });
+      add_variant("Open3D's settings, no medial shift", [](registration::PairOptions& o) {
         o.icp.huber_share = 0;
         o.icp.max_source_points = 0;
         o.icp.iterations_per_stage = 30;
@@ -467,9 +481,10 @@ int main(int argc, char** argv) {
         if (!ours[s].CanRegister() || !ours[t].CanRegister()) continue;
         const Eigen::Isometry3d truth =
             scene.poses[t].world_from_camera.inverse() * scene.poses[s].world_from_camera;
-        const PairResult coarse = RegisterPair(ours[s], ours[t], coarse_only);
+        const registration::PairResult coarse =
+            registration::RegisterPair(ours[s], ours[t], coarse_only);
         if (!coarse.coarse.found) continue;
-        BaselineOptions o3d;
+        registration::BaselineOptions o3d;
         o3d.spacing_m = std::max(ours[s].spacing_m, ours[t].spacing_m);
         for (const auto& [start_name, start] :
              {std::pair{"truth", truth}, std::pair{"ours' coarse", coarse.target_from_source}}) {
@@ -478,15 +493,17 @@ int main(int argc, char** argv) {
           auto begin = Clock::now();
           for (const auto& [variant, variant_options] : fine_variants) {
             begin = Clock::now();
-            FineResult fine = RefinePair(ours[s], ours[t], start, variant_options);
+            registration::FineResult fine =
+                registration::RefinePair(ours[s], ours[t], start, variant_options);
             if (variant_options.symmetric_fine) {
-              fine = AverageWithReverse(ours[s], ours[t], fine, variant_options);
+              fine = registration::AverageWithReverse(ours[s], ours[t], fine, variant_options);
             }
             record(scene, s, t, "ours' fine" + variant + from, fine.icp.target_from_source,
                    Since(begin), ours[s], ours[t], true);
           }
           begin = Clock::now();
-          const Eigen::Isometry3d open3d = Open3dIcp(*ours[s].cloud, *ours[t].cloud, start, o3d);
+          const Eigen::Isometry3d open3d =
+              registration::Open3dIcp(*ours[s].cloud, *ours[t].cloud, start, o3d);
           record(scene, s, t, "Open3D ICP" + from, open3d, Since(begin), ours[s], ours[t], true);
         }
       }
@@ -494,15 +511,16 @@ int main(int argc, char** argv) {
 
     // Table I: the four coarse inputs to the paper's SAC-IA (no priors), coarse only.
     if (!skip_table1 && static_cast<int>(k) < table1_scenes) {
-      PairOptions coarse_only = paper_options;
+      registration::PairOptions coarse_only = paper_options;
       coarse_only.run_icp = false;
-      for (CoarseInput input : table1_inputs) {
-        RegistrationViewOptions options;
+      for (registration::CoarseInput input : table1_inputs) {
+        registration::RegistrationViewOptions options;
         options.coarse_input = input;
         std::vector<double> seconds;
         const auto views = prepare(options, seconds);
         for (const auto& [s, t] : pairs) {
-          const PairResult r = RegisterPair(views[s], views[t], coarse_only);
+          const registration::PairResult r =
+              registration::RegisterPair(views[s], views[t], coarse_only);
           record(scene, s, t, std::string("table1 ") + ToString(input), r.target_from_source,
                  seconds[s] + seconds[t] + r.seconds, ours[s], ours[t], r.ok);
         }
@@ -513,16 +531,16 @@ int main(int argc, char** argv) {
     if (!skip_baselines && static_cast<int>(k) < baseline_scenes) {
       for (const auto& [s, t] : pairs) {
         if (!ours[s].cloud || !ours[t].cloud) continue;
-        BaselineOptions options;
+        registration::BaselineOptions options;
         options.spacing_m = std::max(ours[s].spacing_m, ours[t].spacing_m);
         const auto& cs = *ours[s].cloud;
         const auto& ct = *ours[t].cloud;
-        const BaselineResult pca = PcaIcp(cs, ct, options);
+        const registration::BaselineResult pca = registration::PcaIcp(cs, ct, options);
         record(scene, s, t, "PCA-ICP", pca.target_from_source, pca.seconds, ours[s], ours[t], true);
-        const BaselineResult fpcs = bench::Fpcs4PcsIcp(cs, ct, options);
+        const registration::BaselineResult fpcs = bench::Fpcs4PcsIcp(cs, ct, options);
         record(scene, s, t, "F-4PCS-ICP (PCL)", fpcs.target_from_source, fpcs.seconds, ours[s],
                ours[t], true);
-        const BaselineResult o3d = Open3dFpfhRansacIcp(cs, ct, options);
+        const registration::BaselineResult o3d = registration::Open3dFpfhRansacIcp(cs, ct, options);
         record(scene, s, t, "Open3D FPFH-RANSAC+ICP", o3d.target_from_source, o3d.seconds, ours[s],
                ours[t], true);
       }

@@ -24,9 +24,10 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr ToPcl(const open3d::geometry::PointCloud& cl
 
 }  // namespace
 
-BaselineResult Fpcs4PcsIcp(const open3d::geometry::PointCloud& source,
-                           const open3d::geometry::PointCloud& target,
-                           const BaselineOptions& options, const FpcsOptions& fpcs_options) {
+registration::BaselineResult Fpcs4PcsIcp(const open3d::geometry::PointCloud& source,
+                                         const open3d::geometry::PointCloud& target,
+                                         const registration::BaselineOptions& options,
+                                         const FpcsOptions& fpcs_options) {
   const auto start = Clock::now();
   const auto voxel = options.feature_voxel_factor * options.spacing_m;
   const auto source_pcl = ToPcl(*source.VoxelDownSample(voxel));
@@ -41,7 +42,7 @@ BaselineResult Fpcs4PcsIcp(const open3d::geometry::PointCloud& source,
   fpcs.setNumberOfThreads(fpcs_options.threads);
   pcl::PointCloud<pcl::PointXYZ> aligned;
   fpcs.align(aligned);
-  BaselineResult result;
+  registration::BaselineResult result;
   result.coarse = Eigen::Isometry3d(fpcs.getFinalTransformation().cast<double>());
   result.coarse_seconds = std::chrono::duration<double>(Clock::now() - start).count();
 

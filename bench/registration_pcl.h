@@ -14,8 +14,9 @@ struct FpcsOptions {
   int threads = 2;
 };
 
-BaselineResult Fpcs4PcsIcp(const open3d::geometry::PointCloud& source,
-                           const open3d::geometry::PointCloud& target,
-                           const BaselineOptions& options, const FpcsOptions& fpcs = {});
+registration::BaselineResult Fpcs4PcsIcp(const open3d::geometry::PointCloud& source,
+                                         const open3d::geometry::PointCloud& target,
+                                         const registration::BaselineOptions& options,
+                                         const FpcsOptions& fpcs = {});
 
 }  // namespace simtree::bench

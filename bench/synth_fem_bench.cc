@@ -18,9 +18,9 @@
 
 #include "simtree/core/progress.h"
 #include "simtree/core/tree_file.h"
-#include "simtree/synth/fem_modes.h"
-#include "simtree/synth/fem_response.h"
-#include "simtree/synth/fem_truth.h"
+#include "simtree/synth/detail/fem_modes.h"
+#include "simtree/synth/detail/fem_response.h"
+#include "simtree/synth/detail/fem_truth.h"
 
 namespace simtree {
 namespace {
@@ -53,29 +53,29 @@ const Tree& CachedTree(const std::string& file) {
   return it->second;
 }
 
-WoodProperties BenchWood() {
-  WoodProperties wood;
+synth::WoodProperties BenchWood() {
+  synth::WoodProperties wood;
   wood.SetRayleighFromRatios(1.0, 0.04, 10.0, 0.03);
   return wood;
 }
 
-const FemModel& CachedModel(int index) {
-  static std::map<int, FemModel> cache;
+const synth::FemModel& CachedModel(int index) {
+  static std::map<int, synth::FemModel> cache;
   auto it = cache.find(index);
   if (it == cache.end()) {
     const BenchCase& c = kCases[index];
     it = cache
-             .emplace(index, FemModel(CachedTree(c.file), BenchWood(),
-                                      {.max_element_length_m = c.max_element_length_m}))
+             .emplace(index, synth::FemModel(CachedTree(c.file), BenchWood(),
+                                             {.max_element_length_m = c.max_element_length_m}))
              .first;
   }
   return it->second;
 }
 
-const ModalBasis& CachedModes(int index) {
-  static std::map<int, ModalBasis> cache;
+const synth::ModalBasis& CachedModes(int index) {
+  static std::map<int, synth::ModalBasis> cache;
   auto it = cache.find(index);
-  if (it == cache.end()) it = cache.emplace(index, ComputeModes(CachedModel(index))).first;
+  if (it == cache.end()) it = cache.emplace(index, synth::ComputeModes(CachedModel(index))).first;
   return it->second;
 }
 
@@ -107,7 +107,7 @@ std::vector<double> FrameTimes(double duration, double fps) {
   return t;
 }
 
-void SetCounters(benchmark::State& state, const FemModel& model) {
+void SetCounters(benchmark::State& state, const synth::FemModel& model) {
   state.counters["nodes"] = model.node_count();
   state.counters["dof"] = model.dof_count();
   const BenchCase& c = kCases[state.range(0)];
@@ -119,7 +119,7 @@ void BM_Assemble(benchmark::State& state) {
   const BenchCase& c = kCases[state.range(0)];
   const Tree& tree = CachedTree(c.file);
   for (auto _ : state) {
-    FemModel model(tree, BenchWood(), {.max_element_length_m = c.max_element_length_m});
+    synth::FemModel model(tree, BenchWood(), {.max_element_length_m = c.max_element_length_m});
     benchmark::DoNotOptimize(model.stiffness().nonZeros());
   }
   SetCounters(state, CachedModel(static_cast<int>(state.range(0))));
@@ -127,10 +127,10 @@ void BM_Assemble(benchmark::State& state) {
 
 void BM_Modes60(benchmark::State& state) {
   Progress::SetEnabled(false);
-  const FemModel& model = CachedModel(static_cast<int>(state.range(0)));
-  ModalBasis modes;
+  const synth::FemModel& model = CachedModel(static_cast<int>(state.range(0)));
+  synth::ModalBasis modes;
   for (auto _ : state) {
-    modes = ComputeModes(model, {.count = 60});
+    modes = synth::ComputeModes(model, {.count = 60});
     benchmark::DoNotOptimize(modes.omega.data());
   }
   SetCounters(state, model);
@@ -141,13 +141,13 @@ void BM_Modes60(benchmark::State& state) {
 // 15 s of the pull test, 450 frames at 30 fps, at 1/600 s.
 void BM_PullDirect15s(benchmark::State& state) {
   Progress::SetEnabled(false);
-  const FemModel& model = CachedModel(static_cast<int>(state.range(0)));
+  const synth::FemModel& model = CachedModel(static_cast<int>(state.range(0)));
   const PullLoad pull = BenchPull(model.tree());
   const std::vector<double> frames = FrameTimes(pull.duration_s, 30.0);
   for (auto _ : state) {
-    const PullResult r = IntegratePull(model, pull, frames, {}, [](int, double, const FemState& s) {
-      benchmark::DoNotOptimize(s.x.data());
-    });
+    const synth::PullResult r = synth::IntegratePull(
+        model, pull, frames, {},
+        [](int, double, const synth::FemState& s) { benchmark::DoNotOptimize(s.x.data()); });
     state.counters["steps"] = static_cast<double>(r.run.steps);
   }
   SetCounters(state, model);
@@ -155,17 +155,18 @@ void BM_PullDirect15s(benchmark::State& state) {
 
 void BM_PullModal15s(benchmark::State& state) {
   Progress::SetEnabled(false);
-  const FemModel& model = CachedModel(static_cast<int>(state.range(0)));
-  const ModalBasis& modes = CachedModes(static_cast<int>(state.range(0)));
+  const synth::FemModel& model = CachedModel(static_cast<int>(state.range(0)));
+  const synth::ModalBasis& modes = CachedModes(static_cast<int>(state.range(0)));
   const PullLoad pull = BenchPull(model.tree());
   const std::vector<double> frames = FrameTimes(pull.duration_s, 30.0);
   for (auto _ : state) {
     // What synth needs per frame: the pose of the tree.
-    const PullResult r = IntegratePull(model, modes, pull, frames, {.sample_rates = false},
-                                       [&](int, double, const FemState& s) {
-                                         const TreePose pose = model.Pose(s.x);
-                                         benchmark::DoNotOptimize(pose.positions().data());
-                                       });
+    const synth::PullResult r =
+        synth::IntegratePull(model, modes, pull, frames, {.sample_rates = false},
+                             [&](int, double, const synth::FemState& s) {
+                               const synth::TreePose pose = model.Pose(s.x);
+                               benchmark::DoNotOptimize(pose.positions().data());
+                             });
     state.counters["steps"] = static_cast<double>(r.run.steps);
   }
   SetCounters(state, model);
@@ -179,14 +180,17 @@ void BM_WholeOracle(benchmark::State& state) {
   const PullLoad pull = BenchPull(tree);
   const std::vector<double> frames = FrameTimes(pull.duration_s, 30.0);
   for (auto _ : state) {
-    const FemModel model(tree, BenchWood(), {.max_element_length_m = c.max_element_length_m});
-    const ModalBasis modes = ComputeModes(model, {.count = 60, .cover_frequency_hz = 20.0});
-    const PullResult run = IntegratePull(model, modes, pull, frames, {.sample_rates = false},
-                                         [&](int, double, const FemState& s) {
-                                           const TreePose pose = model.Pose(s.x);
-                                           benchmark::DoNotOptimize(pose.positions().data());
-                                         });
-    const ModalTruth truth = ComputeModalTruth(model, modes, tree, run.release_state);
+    const synth::FemModel model(tree, BenchWood(),
+                                {.max_element_length_m = c.max_element_length_m});
+    const synth::ModalBasis modes =
+        synth::ComputeModes(model, {.count = 60, .cover_frequency_hz = 20.0});
+    const synth::PullResult run =
+        synth::IntegratePull(model, modes, pull, frames, {.sample_rates = false},
+                             [&](int, double, const synth::FemState& s) {
+                               const synth::TreePose pose = model.Pose(s.x);
+                               benchmark::DoNotOptimize(pose.positions().data());
+                             });
+    const ModalTruth truth = synth::ComputeModalTruth(model, modes, tree, run.release_state);
     benchmark::DoNotOptimize(truth.links.data());
     state.counters["modes"] = modes.count();
   }

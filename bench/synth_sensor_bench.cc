@@ -18,9 +18,9 @@
 
 #include "simtree/core/frames.h"
 #include "simtree/core/tree_file.h"
-#include "simtree/synth/camera_rig.h"
-#include "simtree/synth/rgbd_renderer.h"
-#include "simtree/synth/sensor_pose.h"
+#include "simtree/synth/detail/camera_rig.h"
+#include "simtree/synth/detail/rgbd_renderer.h"
+#include "simtree/synth/detail/sensor_pose.h"
 
 namespace simtree {
 namespace {
@@ -82,7 +82,7 @@ Tree LargeTree(int branches) {
 }
 
 // A sway of the crown that changes every frame: nodes move sideways by up to 5 cm with height.
-void Sway(const Tree& tree, int frame, TreePose& pose) {
+void Sway(const Tree& tree, int frame, synth::TreePose& pose) {
   const double phase = 2.0 * 3.14159265358979 * frame / 30.0;
   for (const Branch& b : tree.branches) {
     for (size_t i = 0; i < b.nodes.size(); ++i) {
@@ -95,10 +95,10 @@ void Sway(const Tree& tree, int frame, TreePose& pose) {
 
 struct Fixture {
   Tree tree = BenchTree();
-  SensorScene scene{tree, DefaultSceneOptions(tree, 7)};
-  SensorModel sensor = SensorModel::AzureKinectNfov();
-  Eigen::Isometry3d camera = LookAt({2.5, 0.0, 1.4}, {0.0, 0.0, 2.0});
-  TreePose pose{tree};
+  synth::SensorScene scene{tree, synth::DefaultSceneOptions(tree, 7)};
+  synth::SensorModel sensor = synth::SensorModel::AzureKinectNfov();
+  Eigen::Isometry3d camera = synth::LookAt({2.5, 0.0, 1.4}, {0.0, 0.0, 2.0});
+  synth::TreePose pose{tree};
 };
 
 int Threads(const benchmark::State& state) {
@@ -112,7 +112,8 @@ void BM_SensorFrame(benchmark::State& state) {
   for (auto _ : state) {
     Sway(f.tree, frame, f.pose);
     f.scene.SetPose(f.pose);
-    RenderResult r = RenderRgbd(f.scene, f.sensor, f.camera, {.seed = 1, .frame = frame});
+    synth::RenderResult r =
+        synth::RenderRgbd(f.scene, f.sensor, f.camera, {.seed = 1, .frame = frame});
     benchmark::DoNotOptimize(r.image.depth.pixels.data());
     ++frame;
   }
@@ -138,15 +139,15 @@ BENCHMARK(BM_SensorSetPose)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseR
 void BM_SensorFrameLargeTree(benchmark::State& state) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, Threads(state));
   const Tree tree = LargeTree(1500);
-  SensorScene scene(tree, DefaultSceneOptions(tree, 7));
-  TreePose pose(tree);
-  const Eigen::Isometry3d camera = LookAt({3.0, 0.0, 1.4}, {0.0, 0.0, 2.2});
+  synth::SensorScene scene(tree, synth::DefaultSceneOptions(tree, 7));
+  synth::TreePose pose(tree);
+  const Eigen::Isometry3d camera = synth::LookAt({3.0, 0.0, 1.4}, {0.0, 0.0, 2.2});
   int frame = 0;
   for (auto _ : state) {
     Sway(tree, frame, pose);
     scene.SetPose(pose);
-    RenderResult r =
-        RenderRgbd(scene, SensorModel::AzureKinectNfov(), camera, {.seed = 1, .frame = frame++});
+    synth::RenderResult r = synth::RenderRgbd(scene, synth::SensorModel::AzureKinectNfov(), camera,
+                                              {.seed = 1, .frame = frame++});
     benchmark::DoNotOptimize(r.image.depth.pixels.data());
   }
   state.counters["nodes"] = pose.node_count();
@@ -159,9 +160,9 @@ void BM_SensorRenderBare(benchmark::State& state) {
   Fixture f;
   int frame = 0;
   for (auto _ : state) {
-    RenderResult r =
-        RenderRgbd(f.scene, f.sensor, f.camera,
-                   {.seed = 1, .frame = frame++, .shadows = false, .marker_boxes = false});
+    synth::RenderResult r =
+        synth::RenderRgbd(f.scene, f.sensor, f.camera,
+                          {.seed = 1, .frame = frame++, .shadows = false, .marker_boxes = false});
     benchmark::DoNotOptimize(r.image.depth.pixels.data());
   }
   state.counters["rays_per_s"] =
@@ -200,7 +201,7 @@ void BM_SensorPrimaryRaysPackets(benchmark::State& state) {
   const Eigen::Vector3d o = f.camera.translation();
   const int tile = static_cast<int>(state.range(0));
   std::vector<Eigen::Vector3d> dirs(k.width * tile);
-  std::vector<SceneHit> hits(dirs.size());
+  std::vector<synth::SceneHit> hits(dirs.size());
   for (auto _ : state) {
     int count = 0;
     for (int y0 = 0; y0 < k.height; y0 += tile) {
@@ -213,7 +214,7 @@ void BM_SensorPrimaryRaysPackets(benchmark::State& state) {
         }
       }
       f.scene.IntersectCoherent(o, dirs, hits);
-      for (const SceneHit& h : hits) count += h.hit();
+      for (const synth::SceneHit& h : hits) count += h.hit();
     }
     benchmark::DoNotOptimize(count);
   }
@@ -226,9 +227,10 @@ BENCHMARK(BM_SensorPrimaryRaysPackets)->Arg(1)->Arg(2)->Arg(4)->Unit(benchmark::
 void BM_SensorMarkerBoxes(benchmark::State& state) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, Threads(state));
   Fixture f;
-  const RenderResult r = RenderRgbd(f.scene, f.sensor, f.camera, {.seed = 1, .frame = 0});
+  const synth::RenderResult r =
+      synth::RenderRgbd(f.scene, f.sensor, f.camera, {.seed = 1, .frame = 0});
   for (auto _ : state) {
-    auto boxes = ComputeMarkerBoxes(f.scene, r.image.intrinsics, f.camera, r.labels);
+    auto boxes = synth::ComputeMarkerBoxes(f.scene, r.image.intrinsics, f.camera, r.labels);
     benchmark::DoNotOptimize(boxes.data());
   }
   state.counters["markers"] = static_cast<double>(f.tree.markers.size());

@@ -15,7 +15,7 @@
 #include "simtree/core/tree_file.h"
 #include "simtree/viewer/demo_materials.h"
 #include "simtree/viewer/scene_assets.h"
-#include "simtree/viewer/viewer_app.h"
+#include "simtree/viewer/view.h"
 #include "simtree/viewer/xvfb.h"
 
 namespace simtree {
@@ -33,17 +33,17 @@ const std::filesystem::path kTree02 =
     std::filesystem::path(SIMTREE_SHARED_DATA_DIR) / "authors-demo/tree_model/tree02.txt";
 
 void BM_ViewerFrameTree02(benchmark::State& state) {
-  static std::unique_ptr<ScopedXvfb> xvfb;
-  if (!HasDisplay() && !xvfb) xvfb = std::make_unique<ScopedXvfb>(1280, 800);
+  static std::unique_ptr<viewer::ScopedXvfb> xvfb;
+  if (!viewer::HasDisplay() && !xvfb) xvfb = std::make_unique<viewer::ScopedXvfb>(1280, 800);
   const bool leaves = state.range(0) != 0;
   const bool authors_mesh = state.range(1) != 0;  // the leaf model as shipped, not simplified
   Tree tree = ReadTreeFile(kTree02);
-  FillMissingMaterials(tree);
-  FoliageSource foliage;
+  viewer::FillMissingMaterials(tree);
+  viewer::FoliageSource foliage;
   foliage.leaves = leaves ? "auto" : "none";
-  const SceneAssets assets = LoadSceneAssets(tree, kTree02, foliage);
+  const viewer::SceneAssets assets = viewer::LoadSceneAssets(tree, kTree02, foliage);
 
-  ViewerOptions options;
+  viewer::ViewerOptions options;
   options.width = 1280;
   options.height = 800;
   options.fixed_step = true;
@@ -54,19 +54,19 @@ void BM_ViewerFrameTree02(benchmark::State& state) {
   }
   options.dynamics.wind.enabled = true;
   options.dynamics.wind.mean_speed_mps = 5.0;
-  PullSchedule pull;
+  dynamics::PullSchedule pull;
   pull.rope = {.branch = 20, .arc_length = -1, .anchor = {3, 0, 0}, .force_n = 150};
   pull.hold_s = 0.5;
   pull.release_s = 1e9;  // held for the whole run
   options.pull = pull;
-  Viewer viewer(tree, assets, options);
+  viewer::Viewer viewer(tree, assets, options);
   for (int i = 0; i < 10; ++i) viewer.Frame();  // warm up: shader compilation, first uploads
 
   const double cpu_start = ProcessCpuSeconds();
   for (auto _ : state) viewer.Frame();
   const double cpu = ProcessCpuSeconds() - cpu_start;
 
-  const ViewerStats& stats = viewer.stats();
+  const viewer::ViewerStats& stats = viewer.stats();
   state.counters["triangles"] = static_cast<double>(stats.triangles);
   state.counters["leaves"] = static_cast<double>(assets.leaves.size());
   state.counters["fps"] =

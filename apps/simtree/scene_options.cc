@@ -53,22 +53,22 @@ Tree LoadTreeForViewing(SceneArgs& args) {
   if (!args.material_file.empty()) args.parameters = args.material_file;
   FinishTreeFileOptions(args.tree_options, args.parameters);
   Tree tree = ReadTreeFile(args.input, args.tree_options);
-  const int filled = FillMissingMaterials(tree);
+  const int filled = viewer::FillMissingMaterials(tree);
   if (filled > 0) {
     spdlog::warn(
         "{}: {} of {} branches have no material: using the authors' demo values per "
         "level (source 'default')",
         args.input, filled, tree.size());
   }
-  ValidateForSimulation(tree, args.input);
+  dynamics::ValidateForSimulation(tree, args.input);
   return tree;
 }
 
-SceneStyle StyleFromArgs(const SceneArgs& args) {
-  SceneStyle style;
+viewer::SceneStyle StyleFromArgs(const SceneArgs& args) {
+  viewer::SceneStyle style;
   style.grid = !args.no_grid;
-  if (args.colouring == "level") style.colouring = BranchColouring::kLevel;
-  if (args.colouring == "source") style.colouring = BranchColouring::kSource;
+  if (args.colouring == "level") style.colouring = viewer::BranchColouring::kLevel;
+  if (args.colouring == "source") style.colouring = viewer::BranchColouring::kSource;
   return style;
 }
 

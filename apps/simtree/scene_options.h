@@ -15,7 +15,7 @@ namespace simtree::cli {
 struct SceneArgs {
   std::string input, parameters, material_file;
   TreeFileOptions tree_options;
-  FoliageSource foliage;
+  viewer::FoliageSource foliage;
   std::string colouring = "bark";
   bool no_grid = false;
 };
@@ -29,6 +29,6 @@ void AddSceneOptions(CLI::App* verb, SceneArgs& args);
 // Throws InputError when the tree still cannot be simulated.
 Tree LoadTreeForViewing(SceneArgs& args);
 // The style the options ask for.
-SceneStyle StyleFromArgs(const SceneArgs& args);
+viewer::SceneStyle StyleFromArgs(const SceneArgs& args);
 
 }  // namespace simtree::cli

@@ -84,8 +84,8 @@ void AddRunOptions(CLI::App* verb, SimulationArgs& args) {
 }
 
 void FinishSimulationArgs(const Tree& tree, SimulationArgs& args) {
-  SimulationOptions& sim = args.sim;
-  sim.dynamics.integrator = ParseIntegrator(args.integrator, "--integrator");
+  dynamics::SimulationOptions& sim = args.sim;
+  sim.dynamics.integrator = dynamics::ParseIntegrator(args.integrator, "--integrator");
   sim.dynamics.base_excitation = !args.no_base_excitation;
   sim.dynamics.transfer_loads = !args.no_transfer;
   if (args.wind < 0.0 || !std::isfinite(args.wind)) {
@@ -110,29 +110,30 @@ void FinishSimulationArgs(const Tree& tree, SimulationArgs& args) {
   if (!args.anchor.empty() && !args.direction.empty()) {
     throw InputError("", "--anchor", "expected --anchor or --direction, not both");
   }
-  const PullTarget target = ParsePullTarget(args.pull);
-  PullSchedule schedule;
+  const dynamics::PullTarget target = dynamics::ParsePullTarget(args.pull);
+  dynamics::PullSchedule schedule;
   schedule.rope.branch = target.branch;
   schedule.rope.arc_length = target.arc_length;
   if (args.force) {
     schedule.rope.force_n = *args.force;
   } else {
-    schedule.rope.mode = Rope::Mode::kDisplacement;
+    schedule.rope.mode = dynamics::Rope::Mode::kDisplacement;
     schedule.rope.displacement_m = *args.displacement;
   }
-  const double s = ValidateRope(tree, schedule.rope, "--pull");
+  const double s = dynamics::ValidateRope(tree, schedule.rope, "--pull");
   const Eigen::Vector3d point = tree.branches[target.branch].PointAt(s);
   if (!args.anchor.empty()) {
     schedule.rope.anchor = Vector(args.anchor);
   } else {
-    const Eigen::Vector3d d = args.direction.empty() ? DefaultPullDirection(tree, target.branch, s)
-                                                     : Vector(args.direction);
+    const Eigen::Vector3d d = args.direction.empty()
+                                  ? dynamics::DefaultPullDirection(tree, target.branch, s)
+                                  : Vector(args.direction);
     if (!d.allFinite() || d.norm() < 1e-12) {
       throw InputError("", "--direction", "expected a non-zero finite direction");
     }
     schedule.rope.anchor = point + 2.0 * d.normalized();
   }
-  ValidateRope(tree, schedule.rope, "--pull");
+  dynamics::ValidateRope(tree, schedule.rope, "--pull");
   schedule.hold_s = args.hold;
   schedule.release_s = args.release;
   sim.pull = schedule;

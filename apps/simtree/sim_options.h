@@ -10,12 +10,12 @@
 #include <CLI/CLI.hpp>
 
 #include "simtree/core/tree.h"
-#include "simtree/dynamics/simulation.h"
+#include "simtree/dynamics/simulate.h"
 
 namespace simtree::cli {
 
 struct SimulationArgs {
-  SimulationOptions sim;
+  dynamics::SimulationOptions sim;
   std::string pull, integrator = "exact";
   std::optional<double> force, displacement;
   std::vector<double> anchor, direction;

@@ -5,7 +5,7 @@
 #include "simtree/core/tree_file.h"
 #include "simtree/core/tree_summary.h"
 #include "simtree/identification/materials_file.h"
-#include "simtree/identification/simulation_ready.h"
+#include "simtree/simready/build.h"
 #include "verbs.h"
 
 namespace simtree::cli {
@@ -14,7 +14,7 @@ void RegisterBuild(CLI::App& app) {
   struct Args {
     std::string input, materials, output, parameters;
     TreeFileOptions tree_options;
-    BuildOptions build;
+    simready::BuildOptions build;
     bool no_subtree_mass = false;
   };
   auto args = std::make_shared<Args>();
@@ -48,9 +48,11 @@ void RegisterBuild(CLI::App& app) {
     RefuseToOverwriteInputs(args->output, {args->input, args->materials});
     args->build.include_subtree_mass = !args->no_subtree_mass;
     const Tree static_tree = ReadTreeFile(args->input, args->tree_options);
-    const MaterialsFile materials = ReadMaterialsJson(args->materials);
-    BuildReport report;
-    const Tree tree = BuildSimulationReadyTree(static_tree, materials, args->build, &report);
+    const identification::MaterialsFile materials =
+        identification::ReadMaterialsJson(args->materials);
+    simready::BuildReport report;
+    const Tree tree =
+        simready::BuildSimulationReadyTree(static_tree, materials, args->build, &report);
     WriteTreeFile(tree, args->output, args->tree_options);
     spdlog::info("{} branches measured, {} interpolated: {}", report.measured, report.interpolated,
                  report.interpolation.Describe());

@@ -34,7 +34,7 @@ fs::path TruthFile(const std::string& given, const char* name) {
   return path;
 }
 
-nlohmann::ordered_json SummaryJson(const ScoreSummary& s) {
+nlohmann::ordered_json SummaryJson(const eval::ScoreSummary& s) {
   auto number = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nullptr; };
   return {{"scored", s.scored},
           {"not_estimated", s.not_estimated},
@@ -45,10 +45,10 @@ nlohmann::ordered_json SummaryJson(const ScoreSummary& s) {
           {"max_damping_error", number(s.max_damping_error)}};
 }
 
-nlohmann::ordered_json LinkScoresJson(const LinkScores& scores) {
+nlohmann::ordered_json LinkScoresJson(const eval::LinkScores& scores) {
   auto number = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nullptr; };
   nlohmann::ordered_json out = nlohmann::ordered_json::array();
-  for (const LinkScore& s : scores.links) {
+  for (const eval::LinkScore& s : scores.links) {
     out.push_back({{"label", s.label},
                    {"parent", s.parent},
                    {"child", s.child},
@@ -93,28 +93,29 @@ void RegisterEvalIdentification(CLI::App& eval) {
   sub->callback([args] {
     const fs::path truth_path = TruthFile(args->truth, "modal.json");
     const ModalTruth truth = ReadModalTruth(truth_path);
-    const MaterialsFile materials = ReadMaterialsJson(args->materials);
+    const identification::MaterialsFile materials =
+        identification::ReadMaterialsJson(args->materials);
     nlohmann::ordered_json out = {{"format", "simtree.eval_identification"},
                                   {"version", 1},
                                   {"materials", args->materials},
                                   {"truth", truth_path.string()}};
     // The chosen estimator first, then every other one the file holds.
-    std::vector<std::optional<EstimatorKind>> kinds = {std::nullopt};
-    for (EstimatorKind kind : AllEstimators()) {
+    std::vector<std::optional<identification::EstimatorKind>> kinds = {std::nullopt};
+    for (identification::EstimatorKind kind : identification::AllEstimators()) {
       if (ToString(kind) != materials.estimator) kinds.push_back(kind);
     }
     nlohmann::ordered_json per_estimator = nlohmann::ordered_json::object();
     for (const auto& kind : kinds) {
-      const LinkScores scores = ScoreLinks(materials, truth, kind);
+      const eval::LinkScores scores = eval::ScoreLinks(materials, truth, kind);
       if (scores.summary.scored == 0 && kind) continue;  // not in the file
-      if (!kind) std::printf("%s\n", FormatLinkScores(scores).c_str());
+      if (!kind) std::printf("%s\n", eval::FormatLinkScores(scores).c_str());
       std::printf("%s\n", FormatSummary(scores.estimator, scores.summary).c_str());
       per_estimator[scores.estimator] = SummaryJson(scores.summary);
       per_estimator[scores.estimator]["per_link"] = LinkScoresJson(scores);
     }
     out["links"] = per_estimator;
     if (!args->tree.empty()) {
-      const BranchScores branches = ScoreBranches(ReadTreeJson(args->tree), truth);
+      const eval::BranchScores branches = eval::ScoreBranches(ReadTreeJson(args->tree), truth);
       std::printf("%s\n", FormatSummary("branches, measured", branches.measured).c_str());
       std::printf("%s\n", FormatSummary("branches, interpolated", branches.interpolated).c_str());
       out["branches"] = {{"measured", SummaryJson(branches.measured)},

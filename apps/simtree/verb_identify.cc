@@ -25,10 +25,10 @@ namespace simtree::cli {
 void RegisterIdentify(CLI::App& app) {
   struct Args {
     std::string input, links, tree, camera_pose, output, plots,
-        estimator = ToString(kDefaultEstimator);
+        estimator = ToString(identification::kDefaultEstimator);
     double release_time = -1, window = 0;
     bool no_plots = false, no_compare = false, no_root = false, joint_poles = true;
-    double noise_mm = 0, gap_rate = TrackerErrorOptions{}.gap_start_rate;
+    double noise_mm = 0, gap_rate = tracking::TrackerErrorOptions{}.gap_start_rate;
     uint64_t seed = 1;
     std::string write_noisy, visibility;
   };
@@ -129,14 +129,14 @@ void RegisterIdentify(CLI::App& app) {
 
     Trajectories trajectories = ReadTrajectoriesCsv(trajectories_path);
     if (args->noise_mm > 0) {
-      TrackerErrorOptions noise;
+      tracking::TrackerErrorOptions noise;
       noise.rms_error_mm = args->noise_mm;
       noise.gap_start_rate = args->gap_rate;
       noise.seed = args->seed;
       std::vector<MarkerFrame2d> visibility;
       if (!args->visibility.empty()) visibility = ReadMarkers2d(args->visibility);
-      trajectories = SimulateTrackerError(trajectories, noise,
-                                          args->visibility.empty() ? nullptr : &visibility);
+      trajectories = tracking::SimulateTrackerError(
+          trajectories, noise, args->visibility.empty() ? nullptr : &visibility);
       spdlog::info("added a tracker's errors: {:.1f} mm RMS, gaps starting at rate {}{}",
                    args->noise_mm, args->gap_rate,
                    args->visibility.empty() ? "" : ", lost where the tape was not seen");
@@ -149,19 +149,19 @@ void RegisterIdentify(CLI::App& app) {
     if (!links_path.empty()) markers = ReadMarkersJson(links_path);
     if (!args->tree.empty()) {
       const Tree tree = ReadTreeJson(args->tree);
-      const std::vector<MarkerPlacement> placements =
-          PlaceMarkersOnTree(tree, trajectories, ReadPullCamera(args->camera_pose));
+      const std::vector<identification::MarkerPlacement> placements =
+          identification::PlaceMarkersOnTree(tree, trajectories, ReadPullCamera(args->camera_pose));
       if (markers.empty()) {
-        markers = LinkMarkersByTree(tree, placements);
+        markers = identification::LinkMarkersByTree(tree, placements);
         spdlog::info("linked {} markers along the static tree", markers.size());
       } else {
         for (MarkerLink& m : markers) {
-          for (const MarkerPlacement& p : placements) {
+          for (const identification::MarkerPlacement& p : placements) {
             if (p.marker == m.id && !m.branch && p.branch >= 0) m.branch = p.branch;
           }
         }
       }
-      for (const MarkerPlacement& p : placements) {
+      for (const identification::MarkerPlacement& p : placements) {
         if (p.branch >= 0 && p.distance_m > 0.05) {
           spdlog::warn(
               "marker {} is {:.0f} mm from its nearest branch {}: is the camera pose "
@@ -171,21 +171,22 @@ void RegisterIdentify(CLI::App& app) {
       }
     }
 
-    IdentifyOptions options;
-    options.estimator = *ParseEstimatorKind(args->estimator);
+    identification::IdentifyOptions options;
+    options.estimator = *identification::ParseEstimatorKind(args->estimator);
     options.compare_estimators = !args->no_compare;
     if (args->release_time >= 0) options.release_time_s = args->release_time;
     options.window_s = args->window;
     options.include_root = !args->no_root;
     options.joint_poles = args->joint_poles;
-    const IdentificationResult result =
-        IdentifyMaterials(trajectories, markers, options, trajectories_path.string());
+    const identification::IdentificationResult result = identification::IdentifyMaterials(
+        trajectories, markers, options, trajectories_path.string());
     spdlog::info("release: {}", result.release.note);
     if (!result.joint_poles_note.empty()) spdlog::info("{}", result.joint_poles_note);
     spdlog::info("free decay {:.2f}-{:.2f} s at {:.1f} fps", result.window_start_s,
                  result.window_end_s, result.frame_rate_hz);
 
-    const MaterialsFile materials = MaterialsFromIdentification(result, trajectories_path.string());
+    const identification::MaterialsFile materials =
+        identification::MaterialsFromIdentification(result, trajectories_path.string());
     if (!args->no_plots) {
       fs::path plots = args->plots;
       if (plots.empty()) {
@@ -194,28 +195,30 @@ void RegisterIdentify(CLI::App& app) {
       }
       RefuseToOverwriteInputs(plots, inputs);
       AtomicDirectory folder(plots);
-      for (const LinkIdentification& link : result.links) {
+      for (const identification::LinkIdentification& link : result.links) {
         std::string name = link.deflection.link.label;
         for (char& c : name) {
           if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
         }
-        WriteLinkPlot(result, link, folder.path() / (name + ".png"));
+        identification::WriteLinkPlot(result, link, folder.path() / (name + ".png"));
       }
       folder.Commit();
       spdlog::info("wrote {} spectra plots to {}", result.links.size(), plots.string());
     }
-    WriteMaterialsJson(materials, args->output);
+    identification::WriteMaterialsJson(materials, args->output);
 
-    std::printf("%s\n", FormatLinkTable(result).c_str());
-    const RangeOptions bounds;
+    std::printf("%s\n", identification::FormatLinkTable(result).c_str());
+    const identification::RangeOptions bounds;
     std::printf(
         "Ranges (paper Table IV), over values known to %.0f%% (frequency) and %.0f%% (damping), "
         "one standard deviation:\n",
         100 * bounds.max_frequency_relative_std, 100 * bounds.max_damping_relative_std);
-    std::printf("  %s\n", FormatRanges(result.Ranges(), ToString(result.estimator)).c_str());
-    for (EstimatorKind kind : AllEstimators()) {
+    std::printf("  %s\n",
+                identification::FormatRanges(result.Ranges(), ToString(result.estimator)).c_str());
+    for (identification::EstimatorKind kind : identification::AllEstimators()) {
       if (kind == result.estimator || args->no_compare) continue;
-      std::printf("  %s\n", FormatRanges(result.Ranges(kind), ToString(kind)).c_str());
+      std::printf("  %s\n",
+                  identification::FormatRanges(result.Ranges(kind), ToString(kind)).c_str());
     }
     spdlog::info("wrote {} ({} links, {} measured, {} branches)", args->output,
                  materials.links.size(), materials.ranges.measured, materials.branches.size());

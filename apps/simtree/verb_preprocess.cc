@@ -7,7 +7,7 @@
 #include "cli_common.h"
 #include "simtree/core/atomic_file.h"
 #include "simtree/core/error.h"
-#include "simtree/scan/capture_views.h"
+#include "simtree/preprocessing/preprocess.h"
 #include "verbs.h"
 
 namespace fs = std::filesystem;
@@ -32,7 +32,7 @@ void RefuseToReplaceInputs(const fs::path& output, const fs::path& input) {
   }
 }
 
-void AddPreprocessOptions(CLI::App* verb, PreprocessOptions& options) {
+void AddPreprocessOptions(CLI::App* verb, preprocessing::PreprocessOptions& options) {
   verb->add_option("--voxel", options.voxel_size_m,
                    "Voxel grid size in metres (0: --voxel-factor times the measured point spacing)")
       ->capture_default_str()
@@ -58,7 +58,7 @@ void AddPreprocessOptions(CLI::App* verb, PreprocessOptions& options) {
 void RegisterPreprocess(CLI::App& app) {
   struct Args {
     std::string input, output;
-    PreprocessOptions preprocess;
+    preprocessing::PreprocessOptions preprocess;
   };
   auto args = std::make_shared<Args>();
   CLI::App* verb = app.add_subcommand(
@@ -78,18 +78,18 @@ void RegisterPreprocess(CLI::App& app) {
                          "simtree preprocess scene/ --out clean/ --voxel 0.01 --keep-clusters"}));
   verb->callback([args] {
     RefuseToReplaceInputs(args->output, args->input);
-    const auto views = LoadViews(args->input, args->preprocess);
+    const auto views = preprocessing::LoadViews(args->input, args->preprocess);
     AtomicDirectory folder(args->output);
-    WritePreprocessedViews(views, folder.path());
+    preprocessing::WritePreprocessedViews(views, folder.path());
     folder.Commit();
     int failed = 0;
-    for (const PreprocessedView& view : views) {
+    for (const preprocessing::PreprocessedView& view : views) {
       if (!view.result) {
         ++failed;
         spdlog::warn("{}: not usable: {}", view.name, view.failure);
         continue;
       }
-      const PreprocessResult& r = *view.result;
+      const preprocessing::PreprocessResult& r = *view.result;
       spdlog::info(
           "{}: {} points -> {} tree points (ground {}, outliers {}, voxel {:.1f} mm = {:.1f} x "
           "spacing {:.1f} mm removed {:.0f}%, off the tree {}) in {:.2f} s",

@@ -21,7 +21,7 @@ namespace {
 
 std::string LevelCounts(const Tree& tree) {
   std::string out;
-  const std::vector<int> counts = BranchCountsByLevel(tree);
+  const std::vector<int> counts = eval::BranchCountsByLevel(tree);
   for (size_t l = 0; l < counts.size(); ++l)
     out += fmt::format("{}{}: {}", l ? ", " : "", l, counts[l]);
   return out;
@@ -32,7 +32,7 @@ std::string LevelCounts(const Tree& tree) {
 void RegisterReconstruct(CLI::App& app) {
   struct Args {
     std::string input, output, mesh, picture;
-    ReconstructionOptions options;
+    reconstruction::ReconstructionOptions options;
     bool no_fit_score = false;
   };
   auto args = std::make_shared<Args>();
@@ -81,12 +81,13 @@ void RegisterReconstruct(CLI::App& app) {
     PointCloudReadReport read;
     const open3d::geometry::PointCloud cloud = ReadPointCloud(args->input, &read);
     const std::string source = fs::path(args->input).filename().string();
-    const ReconstructionResult result = ReconstructTree(cloud.points_, args->input, args->options);
+    const reconstruction::ReconstructionResult result =
+        reconstruction::ReconstructTree(cloud.points_, args->input, args->options);
     Tree tree = result.tree;
     tree.metadata.source = "reconstructed from " + source;
     WriteTreeFile(tree, args->output);
 
-    const ReconstructionScale& p = result.parameters;
+    const reconstruction::ReconstructionScale& p = result.parameters;
     spdlog::info(
         "{}: {} points (spacing {:.1f} mm, roughness {:.1f} mm), {} working points at "
         "{:.1f} mm",
@@ -128,8 +129,8 @@ void RegisterReconstruct(CLI::App& app) {
                                     result.trunk.slices_agree ? "agree" : "disagree"));
     }
     if (!args->no_fit_score) {
-      const CloudFitScores fit = ScoreAgainstCloud(tree, cloud.points_);
-      spdlog::info("fit: {}", FormatCloudFit(fit));
+      const eval::CloudFitScores fit = eval::ScoreAgainstCloud(tree, cloud.points_);
+      spdlog::info("fit: {}", eval::FormatCloudFit(fit));
       caption.push_back(fmt::format("points to model surface: mean {:.1f} mm, {:.1f}% within 2 cm",
                                     1e3 * fit.mean_distance_m, 100 * fit.share_within));
     }
@@ -142,10 +143,10 @@ void RegisterReconstruct(CLI::App& app) {
       spdlog::info("wrote {} ({} triangles)", args->mesh, mesh.triangle_count());
     }
     if (!args->picture.empty()) {
-      ReconstructionPlotOptions plot;
+      reconstruction::ReconstructionPlotOptions plot;
       plot.title = "simtree reconstruct " + source;
       plot.caption = caption;
-      WriteReconstructionPlot(tree, cloud.points_, args->picture, plot);
+      reconstruction::WriteReconstructionPlot(tree, cloud.points_, args->picture, plot);
       spdlog::info("wrote {}", args->picture);
     }
   });

@@ -10,23 +10,23 @@
 #include "simtree/core/progress.h"
 #include "simtree/io/image_io.h"
 #include "simtree/io/point_cloud_io.h"
-#include "simtree/registration/multiview.h"
+#include "simtree/preprocessing/preprocess.h"
+#include "simtree/registration/register.h"
 #include "simtree/registration/registration_report.h"
-#include "simtree/scan/capture_views.h"
 #include "verbs.h"
 
 namespace fs = std::filesystem;
 
 namespace simtree::cli {
 
-void AddPreprocessOptions(CLI::App* verb, PreprocessOptions& options);
+void AddPreprocessOptions(CLI::App* verb, preprocessing::PreprocessOptions& options);
 void RefuseToReplaceInputs(const fs::path& output, const fs::path& input);
 
 void RegisterRegister(CLI::App& app) {
   struct Args {
     std::string input, output, coarse = "key_region_skeleton";
-    PreprocessOptions preprocess;
-    MultiViewOptions multiview;
+    preprocessing::PreprocessOptions preprocess;
+    registration::MultiViewOptions multiview;
     bool open_ring = false, no_icp = false, no_priors = false;
     double key_radius = 0.0;
   };
@@ -74,17 +74,19 @@ void RegisterRegister(CLI::App& app) {
                 "simtree register scene/ --out reg/ --coarse entire_tree --no-priors"}));
   verb->callback([args] {
     RefuseToReplaceInputs(args->output, args->input);
-    const std::vector<PreprocessedView> preprocessed = LoadViews(args->input, args->preprocess);
+    const std::vector<preprocessing::PreprocessedView> preprocessed =
+        preprocessing::LoadViews(args->input, args->preprocess);
 
-    RegistrationViewOptions view_options;
-    view_options.coarse_input = ParseCoarseInput(args->coarse);
+    registration::RegistrationViewOptions view_options;
+    view_options.coarse_input = registration::ParseCoarseInput(args->coarse);
     view_options.key_region.radius_m = args->key_radius;
-    std::vector<RegistrationView> views(preprocessed.size());
+    std::vector<registration::RegistrationView> views(preprocessed.size());
     {
       Progress progress("prepare", static_cast<int64_t>(views.size()), "views");
       oneapi::tbb::parallel_for(size_t{0}, views.size(), [&](size_t v) {
         if (preprocessed[v].result) {
-          views[v] = PrepareView(preprocessed[v].name, *preprocessed[v].result, view_options);
+          views[v] = registration::PrepareView(preprocessed[v].name, *preprocessed[v].result,
+                                               view_options);
         } else {
           views[v].name = preprocessed[v].name;
           views[v].failure = preprocessed[v].failure;
@@ -92,25 +94,25 @@ void RegisterRegister(CLI::App& app) {
         progress.Advance();
       });
     }
-    MultiViewOptions& mv = args->multiview;
+    registration::MultiViewOptions& mv = args->multiview;
     mv.closed_ring = !args->open_ring;
     mv.pair.run_icp = !args->no_icp;
     if (args->no_priors) {
       mv.pair.up_prior = mv.pair.center_prior = mv.pair.snap_to_priors = false;
       mv.pair.trunk_axis_weight = mv.pair.ground_weight = 0.0;
     }
-    const MultiViewResult result = RegisterViews(views, mv);
+    const registration::MultiViewResult result = registration::RegisterViews(views, mv);
 
     AtomicDirectory folder(args->output);
     const fs::path dir = folder.path();
-    WriteFileAtomically(dir / "poses.json", PosesToJson(result).dump(1) + "\n");
-    WriteFileAtomically(dir / "pairs.json", PairsToJson(result).dump(1) + "\n");
-    WriteFileAtomically(dir / "pairs.md", PairsMarkdown(result));
-    WritePng(BeforeAfterPicture(views, result), dir / "before_after.png");
+    WriteFileAtomically(dir / "poses.json", registration::PosesToJson(result).dump(1) + "\n");
+    WriteFileAtomically(dir / "pairs.json", registration::PairsToJson(result).dump(1) + "\n");
+    WriteFileAtomically(dir / "pairs.md", registration::PairsMarkdown(result));
+    WritePng(registration::BeforeAfterPicture(views, result), dir / "before_after.png");
     if (!result.merged.points_.empty()) WritePointCloud(result.merged, dir / "merged.ply");
     folder.Commit();
 
-    for (const PairEdge& edge : result.pairs) {
+    for (const registration::PairEdge& edge : result.pairs) {
       if (!edge.result.ok) {
         spdlog::warn("pair {} -> {}: failed: {}", edge.result.source, edge.result.target,
                      edge.result.status);
@@ -122,7 +124,7 @@ void RegisterRegister(CLI::App& app) {
             1e3 * edge.shift_residual_m);
       }
     }
-    for (const ViewRegistration& view : result.views) {
+    for (const registration::ViewRegistration& view : result.views) {
       if (!view.registered) spdlog::warn("{}: not registered: {}", view.name, view.status);
     }
     spdlog::info("registered {} of {} views ({} pairs, {:.1f} s); wrote {}",

@@ -7,7 +7,7 @@
 #include "simtree/core/error.h"
 #include "simtree/core/units.h"
 #include "simtree/io/ground_truth.h"
-#include "simtree/viewer/headless_render.h"
+#include "simtree/viewer/render.h"
 #include "simtree/viewer/video.h"
 #include "verbs.h"
 
@@ -96,15 +96,16 @@ void RegisterRender(CLI::App& app) {
     }
     const Tree tree = LoadTreeForViewing(a.scene);
     FinishSimulationArgs(tree, a.run);
-    const SceneAssets assets = LoadSceneAssets(tree, a.scene.input, a.scene.foliage);
+    const viewer::SceneAssets assets =
+        viewer::LoadSceneAssets(tree, a.scene.input, a.scene.foliage);
 
-    RenderOptions options;
+    viewer::RenderOptions options;
     options.width = a.size[0];
     options.height = a.size[1];
     options.samples = a.msaa;
-    options.backend = a.backend == "egl"    ? OffscreenBackend::kEgl
-                      : a.backend == "xvfb" ? OffscreenBackend::kXvfb
-                                            : OffscreenBackend::kAuto;
+    options.backend = a.backend == "egl"    ? viewer::OffscreenBackend::kEgl
+                      : a.backend == "xvfb" ? viewer::OffscreenBackend::kXvfb
+                                            : viewer::OffscreenBackend::kAuto;
     options.style = StyleFromArgs(a.scene);
     options.yaw_rad = DegToRad(a.yaw_deg);
     options.pitch_rad = DegToRad(a.pitch_deg);
@@ -112,15 +113,15 @@ void RegisterRender(CLI::App& app) {
     options.markers = !a.no_markers;
     if (!a.camera_pose.empty()) options.world_from_camera = ReadPullCamera(a.camera_pose);
     if (!a.capture.empty()) options.capture = a.capture;
-    const RenderResult result = RenderSimulation(tree, a.run.sim, assets.foliage_or_null(),
-                                                 assets.leaves, options, a.output);
+    const viewer::RenderResult result = viewer::RenderSimulation(
+        tree, a.run.sim, assets.foliage_or_null(), assets.leaves, options, a.output);
     spdlog::info(
         "rendered {} frames of {}x{} to {} in {:.1f} s ({:.1f} ms a frame to draw, {} "
         "triangles) with {}",
         result.frames, result.width, result.height, a.output, result.seconds,
         result.draw_ms_per_frame, result.triangles_per_frame, result.backend);
     if (!a.video.empty()) {
-      EncodeVideo(a.output, a.video, {.fps = result.simulated_fps});
+      viewer::EncodeVideo(a.output, a.video, {.fps = result.simulated_fps});
       spdlog::info("wrote {} ({} frames at {} fps)", a.video, result.frames, result.simulated_fps);
     }
   });

@@ -9,7 +9,7 @@
 #include "simtree/core/tree_file.h"
 #include "simtree/core/units.h"
 #include "simtree/dynamics/recorders.h"
-#include "simtree/dynamics/simulation.h"
+#include "simtree/dynamics/simulate.h"
 #include "verbs.h"
 
 namespace simtree::cli {
@@ -22,7 +22,7 @@ void RegisterSimulate(CLI::App& app) {
     SimulationArgs run;
     int marker_level = 2;
     bool no_gltf = false, no_nodes = false;
-    AnimationOptions animation;
+    dynamics::AnimationOptions animation;
   };
   auto args = std::make_shared<Args>();
   CLI::App* verb = app.add_subcommand(
@@ -82,33 +82,34 @@ void RegisterSimulate(CLI::App& app) {
     if (!args->parameters.empty()) inputs.push_back(args->parameters);
     RefuseToOverwriteInputs(args->output, inputs);
     const Tree tree = ReadTreeFile(args->input, args->options);
-    ValidateForSimulation(tree, args->input);
+    dynamics::ValidateForSimulation(tree, args->input);
 
     FinishSimulationArgs(tree, args->run);
-    const SimulationOptions& sim = args->run.sim;
+    const dynamics::SimulationOptions& sim = args->run.sim;
 
     std::vector<Marker> markers = tree.markers;
     if (markers.empty() && args->markers == "auto") {
-      std::optional<Rope> rope;
+      std::optional<dynamics::Rope> rope;
       if (sim.pull) rope = sim.pull->rope;
-      markers = AutoMarkers(tree, args->marker_level, rope);
+      markers = dynamics::AutoMarkers(tree, args->marker_level, rope);
     }
 
     AtomicDirectory folder(args->output);
     const std::filesystem::path dir = folder.path();
-    std::vector<std::unique_ptr<FrameRecorder>> owned;
-    if (!args->no_nodes) owned.push_back(std::make_unique<NodeFrameWriter>(dir / "nodes.bin"));
+    std::vector<std::unique_ptr<dynamics::FrameRecorder>> owned;
+    if (!args->no_nodes)
+      owned.push_back(std::make_unique<dynamics::NodeFrameWriter>(dir / "nodes.bin"));
     if (!markers.empty()) {
-      owned.push_back(
-          std::make_unique<MarkerTrackWriter>(markers, dir / "markers.csv", dir / "markers.json"));
+      owned.push_back(std::make_unique<dynamics::MarkerTrackWriter>(markers, dir / "markers.csv",
+                                                                    dir / "markers.json"));
     }
     if (!args->no_gltf) {
-      owned.push_back(
-          std::make_unique<AnimationRecorder>(dir / "animation.glb", markers, args->animation));
+      owned.push_back(std::make_unique<dynamics::AnimationRecorder>(dir / "animation.glb", markers,
+                                                                    args->animation));
     }
-    std::vector<FrameRecorder*> recorders;
+    std::vector<dynamics::FrameRecorder*> recorders;
     for (auto& r : owned) recorders.push_back(r.get());
-    const SimulationResult result = RunSimulation(tree, sim, recorders);
+    const dynamics::SimulationResult result = dynamics::RunSimulation(tree, sim, recorders);
 
     nlohmann::ordered_json doc;
     doc["format"] = "simtree.simulation";
@@ -128,13 +129,13 @@ void RegisterSimulate(CLI::App& app) {
     doc["gravity"] = sim.dynamics.gravity;
     doc["demo_mode_spread"] = sim.dynamics.demo_mode_spread;
     if (sim.pull) {
-      const Rope& r = sim.pull->rope;
+      const dynamics::Rope& r = sim.pull->rope;
       doc["pull"] = {
           {"branch", r.branch},
           {"arc_length_m", r.arc_length < 0 ? tree.branches[r.branch].Length() : r.arc_length},
           {"point", {result.pull_point.x(), result.pull_point.y(), result.pull_point.z()}},
           {"anchor", {r.anchor.x(), r.anchor.y(), r.anchor.z()}},
-          {"mode", r.mode == Rope::Mode::kForce ? "force" : "displacement"},
+          {"mode", r.mode == dynamics::Rope::Mode::kForce ? "force" : "displacement"},
           {"force_n", r.force_n},
           {"displacement_m", r.displacement_m},
           {"tension_n", result.pull_tension_n},
@@ -144,7 +145,7 @@ void RegisterSimulate(CLI::App& app) {
       doc["pull"] = nullptr;
     }
     if (sim.dynamics.wind.enabled) {
-      const WindOptions& w = sim.dynamics.wind;
+      const dynamics::WindOptions& w = sim.dynamics.wind;
       doc["wind"] = {{"mean_speed_mps", w.mean_speed_mps},
                      {"heading_deg", args->run.wind_heading_deg},
                      {"turbulence_intensity", w.turbulence_intensity},

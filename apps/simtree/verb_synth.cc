@@ -8,7 +8,7 @@
 #include "simtree/core/atomic_file.h"
 #include "simtree/core/error.h"
 #include "simtree/synth/species.h"
-#include "simtree/synth/synth_capture.h"
+#include "simtree/synth/synth.h"
 #include "verbs.h"
 
 namespace fs = std::filesystem;
@@ -17,7 +17,7 @@ namespace simtree::cli {
 
 void RegisterSynth(CLI::App& app) {
   struct Args {
-    SynthOptions synth;
+    synth::SynthOptions synth;
     std::string output, species_file;
     bool list_species = false, no_sheet = false;
   };
@@ -30,7 +30,7 @@ void RegisterSynth(CLI::App& app) {
   verb->add_option("-o,--out", args->output,
                    "Capture folder to write (replaced whole, or left untouched on error)");
   std::string presets;
-  for (const std::string& name : SpeciesPresetNames()) {
+  for (const std::string& name : synth::SpeciesPresetNames()) {
     presets += (presets.empty() ? "" : ", ") + name;
   }
   verb->add_option("--species", args->synth.species, "Species preset: " + presets)
@@ -83,17 +83,17 @@ void RegisterSynth(CLI::App& app) {
   }));
   verb->callback([args] {
     if (args->list_species) {
-      for (const std::string& name : SpeciesPresetNames()) {
-        std::printf("%-14s %s\n", name.c_str(), SpeciesPreset(name).description.c_str());
+      for (const std::string& name : synth::SpeciesPresetNames()) {
+        std::printf("%-14s %s\n", name.c_str(), synth::SpeciesPreset(name).description.c_str());
       }
       return;
     }
     if (args->output.empty()) throw InputError("synth", "--out", "expected an output folder");
-    SynthOptions options = args->synth;
+    synth::SynthOptions options = args->synth;
     options.species_file = args->species_file;
     options.contact_sheet = !args->no_sheet;
     if (!args->species_file.empty()) RefuseToOverwriteInputs(args->output, {args->species_file});
-    const SynthReport report = RunSynth(options, args->output);
+    const synth::SynthReport report = synth::RunSynth(options, args->output);
     spdlog::info("synth: {}", report.Summary());
     if (options.truth_only) {
       std::printf("wrote %s: gt/ (tree, species, pull load, modal truth)\n", args->output.c_str());

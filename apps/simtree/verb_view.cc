@@ -7,7 +7,7 @@
 #include "simtree/dynamics/recorders.h"
 #include "simtree/io/ground_truth.h"
 #include "simtree/viewer/marker_playback.h"
-#include "simtree/viewer/viewer_app.h"
+#include "simtree/viewer/view.h"
 #include "verbs.h"
 
 namespace simtree::cli {
@@ -94,7 +94,7 @@ void RegisterView(CLI::App& app) {
     }
     const Tree tree = LoadTreeForViewing(a.scene);
     FinishSimulationArgs(tree, a.run);
-    ViewerOptions options;
+    viewer::ViewerOptions options;
     options.width = a.size[0];
     options.height = a.size[1];
     options.samples = a.msaa;
@@ -107,7 +107,7 @@ void RegisterView(CLI::App& app) {
     options.start_paused = a.paused;
     options.screenshot_dir = a.screenshots;
     if (!a.script.empty()) {
-      options.script = ReadScript(a.script);
+      options.script = viewer::ReadScript(a.script);
       options.script_source = a.script;
       options.fixed_step = true;  // a script means the same motion however fast frames are drawn
     }
@@ -115,19 +115,20 @@ void RegisterView(CLI::App& app) {
     if (!a.tracks.empty()) {
       std::optional<Eigen::Isometry3d> pose;
       if (!a.camera_pose.empty()) pose = ReadPullCamera(a.camera_pose);
-      options.measured = ReadTracksInWorld(a.tracks, pose);
+      options.measured = viewer::ReadTracksInWorld(a.tracks, pose);
     }
     options.markers = tree.markers;
     // Playback compares markers by id: the ones `simulate` tracked on a tree without its own.
     if (options.markers.empty() && options.measured) {
-      std::optional<Rope> rope;
+      std::optional<dynamics::Rope> rope;
       if (options.pull) rope = options.pull->rope;
-      options.markers = AutoMarkers(tree, a.marker_level, rope);
+      options.markers = dynamics::AutoMarkers(tree, a.marker_level, rope);
     }
-    const SceneAssets assets = LoadSceneAssets(tree, a.scene.input, a.scene.foliage);
-    Viewer viewer(tree, assets, options);
+    const viewer::SceneAssets assets =
+        viewer::LoadSceneAssets(tree, a.scene.input, a.scene.foliage);
+    viewer::Viewer viewer(tree, assets, options);
     viewer.Run();
-    const ViewerStats& stats = viewer.stats();
+    const viewer::ViewerStats& stats = viewer.stats();
     spdlog::info(
         "view: {} frames, {:.1f} ms a frame on average ({:.1f} ms drawing, {:.1f} ms "
         "simulating)",

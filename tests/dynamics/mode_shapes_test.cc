@@ -1,10 +1,10 @@
-#include "simtree/dynamics/mode_shapes.h"
+#include "simtree/dynamics/detail/mode_shapes.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-namespace simtree {
+namespace simtree::dynamics {
 namespace {
 
 double NumericDerivative(double (*f)(double), double x, double h = 1e-5) {
@@ -55,4 +55,4 @@ TEST(ModeShapes, TwistGrowsAlongTheBranch) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::dynamics

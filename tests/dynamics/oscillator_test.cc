@@ -9,7 +9,7 @@
 #include "simtree/core/error.h"
 #include "simtree/core/units.h"
 
-namespace simtree {
+namespace simtree::dynamics {
 namespace {
 
 struct Decay {
@@ -181,4 +181,4 @@ TEST(Oscillator, RejectsNonPhysicalParameters) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::dynamics

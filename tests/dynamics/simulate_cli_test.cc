@@ -18,7 +18,7 @@
 #include "simtree/dynamics/recorders.h"
 #include "test_util.h"
 
-namespace simtree {
+namespace simtree::dynamics {
 namespace {
 
 using ::testing::HasSubstr;
@@ -187,4 +187,4 @@ TEST(SimulateCli, HelpTeaches) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::dynamics

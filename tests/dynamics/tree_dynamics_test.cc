@@ -8,9 +8,9 @@
 #include "dynamics/dynamics_fixtures.h"
 #include "simtree/core/error.h"
 #include "simtree/core/units.h"
-#include "simtree/dynamics/mode_shapes.h"
+#include "simtree/dynamics/detail/mode_shapes.h"
 
-namespace simtree {
+namespace simtree::dynamics {
 namespace {
 
 Eigen::Vector3d Tip(const TreeDynamics& sim, int branch) {
@@ -559,4 +559,4 @@ TEST(PullTarget, ParsesBranchAndArcLength) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::dynamics

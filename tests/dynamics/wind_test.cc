@@ -6,7 +6,7 @@
 
 #include "simtree/core/error.h"
 
-namespace simtree {
+namespace simtree::dynamics {
 namespace {
 
 WindOptions Windy() {
@@ -133,4 +133,4 @@ TEST(Wind, BadOptionsAreRefused) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::dynamics

@@ -6,36 +6,38 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-namespace simtree {
+namespace simtree::eval {
 namespace {
 
 using ::testing::HasSubstr;
 
-LinkMaterial Link(int parent, int child, double f, double z, EstimateStatus status) {
-  LinkMaterial l;
+identification::LinkMaterial Link(int parent, int child, double f, double z,
+                                  identification::EstimateStatus status) {
+  identification::LinkMaterial l;
   l.parent = parent;
   l.child = child;
   l.label = fmt::format("M{}", child);
   l.value.status = status;
-  if (status == EstimateStatus::kOk) {
+  if (status == identification::EstimateStatus::kOk) {
     l.value.frequency_hz = f;
     l.value.damping_ratio = z;
   }
-  ModalEstimate paper = l.value;
-  if (status == EstimateStatus::kOk) paper.damping_ratio = 2 * z;
-  l.estimators = {{EstimatorKind::kDampedSinusoidFit, l.value},
-                  {EstimatorKind::kHalfPowerFft, paper}};
+  identification::ModalEstimate paper = l.value;
+  if (status == identification::EstimateStatus::kOk) paper.damping_ratio = 2 * z;
+  l.estimators = {{identification::EstimatorKind::kDampedSinusoidFit, l.value},
+                  {identification::EstimatorKind::kHalfPowerFft, paper}};
   return l;
 }
 
 TEST(IdentificationMetrics, LinkErrorsAreRelativeAndMediansSkipWhatWasNotEstimated) {
   ModalTruth truth;
   truth.links = {{-1, 0, 1.0, 0.02}, {0, 1, 1.2, 0.03}, {1, 2, 1.5, 0.05}, {1, 3, 1.4, 0.04}};
-  MaterialsFile m;
-  m.links = {Link(-1, 0, 1.01, 0.021, EstimateStatus::kOk),
-             Link(0, 1, 1.2, 0.027, EstimateStatus::kOk), Link(1, 2, 0, 0, EstimateStatus::kFlat),
-             Link(1, 3, 1.428, 0.04, EstimateStatus::kOk),
-             Link(3, 9, 1.0, 0.03, EstimateStatus::kOk)};
+  identification::MaterialsFile m;
+  m.links = {Link(-1, 0, 1.01, 0.021, identification::EstimateStatus::kOk),
+             Link(0, 1, 1.2, 0.027, identification::EstimateStatus::kOk),
+             Link(1, 2, 0, 0, identification::EstimateStatus::kFlat),
+             Link(1, 3, 1.428, 0.04, identification::EstimateStatus::kOk),
+             Link(3, 9, 1.0, 0.03, identification::EstimateStatus::kOk)};
   const LinkScores s = ScoreLinks(m, truth);
   ASSERT_EQ(s.links.size(), 4u);
   EXPECT_EQ(s.summary.scored, 3);
@@ -45,7 +47,7 @@ TEST(IdentificationMetrics, LinkErrorsAreRelativeAndMediansSkipWhatWasNotEstimat
   EXPECT_NEAR(s.summary.median_frequency_error, 0.01, 1e-12);  // {0.01, 0, 0.02}
   EXPECT_NEAR(s.summary.median_damping_error, 0.05, 1e-12);    // {0.05, 0.1, 0}
   EXPECT_NEAR(s.summary.max_damping_error, 0.1, 1e-12);
-  const LinkScores paper = ScoreLinks(m, truth, EstimatorKind::kHalfPowerFft);
+  const LinkScores paper = ScoreLinks(m, truth, identification::EstimatorKind::kHalfPowerFft);
   EXPECT_NEAR(paper.summary.median_damping_error, 1.0, 1e-12);  // {1.1, 0.8, 1.0}
   EXPECT_THAT(FormatSummary("fit", s.summary), HasSubstr("1 not estimated"));
   EXPECT_THAT(FormatLinkScores(s), HasSubstr("| M1 | ok | 1.2000 |"));
@@ -56,8 +58,9 @@ TEST(IdentificationMetrics, ARunnerUpModeIsReportedAndTheNearestStrongModeScored
   ModalTruth::Link two_modes{0, 1, 1.8, 0.02};
   two_modes.peaks = {{4, 1.8, 0.02, 0.01, 0.5}, {1, 1.0, 0.03, 0.02, 0.4}};
   truth.links = {two_modes, {0, 2, 1.2, 0.03}};
-  MaterialsFile m;
-  m.links = {Link(0, 1, 1.01, 0.03, EstimateStatus::kOk), Link(0, 2, 0, 0, EstimateStatus::kFlat)};
+  identification::MaterialsFile m;
+  m.links = {Link(0, 1, 1.01, 0.03, identification::EstimateStatus::kOk),
+             Link(0, 2, 0, 0, identification::EstimateStatus::kFlat)};
   m.links[1].value.message = "no motion above the noise";
   const LinkScores s = ScoreLinks(m, truth);
   ASSERT_EQ(s.links.size(), 2u);
@@ -96,4 +99,4 @@ TEST(IdentificationMetrics, BranchesAreScoredByTheirSource) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::eval

@@ -5,7 +5,7 @@
 
 #include "simtree/core/frames.h"
 
-namespace simtree {
+namespace simtree::eval {
 namespace {
 
 // A trunk (1.5 m, radius 8 cm to 4 cm) with three side branches of 3 cm, 1.5 cm and 0.5 cm.
@@ -146,4 +146,4 @@ TEST(ReconstructionMetrics, MissedThinEndsCountOnlyInTheFullSkeletonDistance) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::eval

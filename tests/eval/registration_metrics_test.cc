@@ -7,7 +7,7 @@
 
 #include "simtree/core/error.h"
 
-namespace simtree {
+namespace simtree::eval {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -125,4 +125,4 @@ TEST(RegistrationMetrics, EmptyTreePointsAreAnError) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::eval

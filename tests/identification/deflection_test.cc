@@ -1,13 +1,13 @@
-#include "simtree/identification/deflection.h"
+#include "simtree/identification/detail/deflection.h"
 
 #include <cmath>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "simtree/identification/test_signals.h"
+#include "simtree/identification/detail/test_signals.h"
 
-namespace simtree {
+namespace simtree::identification {
 namespace {
 
 using ::testing::HasSubstr;
@@ -105,4 +105,4 @@ TEST(Deflection, InvalidFramesOfAnyMarkerOfTheLinkAreGaps) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::identification

@@ -6,9 +6,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "simtree/identification/test_signals.h"
+#include "simtree/identification/detail/test_signals.h"
 
-namespace simtree {
+namespace simtree::identification {
 namespace {
 
 using ::testing::HasSubstr;
@@ -192,4 +192,4 @@ TEST(Estimators, HalfPowerPeakReadsTheBandOfAKnownLorentzian) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::identification

@@ -4,13 +4,13 @@
 #include <gtest/gtest.h>
 
 #include "simtree/core/tree_json.h"
+#include "simtree/identification/detail/test_signals.h"
 #include "simtree/identification/materials_file.h"
-#include "simtree/identification/test_signals.h"
 #include "simtree/tracking/tracker_error.h"
 #include "test_util.h"
 #include "tree_fixture.h"
 
-namespace simtree {
+namespace simtree::identification {
 namespace {
 
 using ::testing::HasSubstr;
@@ -29,7 +29,7 @@ fs::path WritePullTest(const fs::path& dir) {
   const Trajectories t = MakeMarkerTrajectories(tree, 30, 1.5, 10, &markers);
   for (int m = 0; m < 3; ++m) markers[m].branch = m;
   fs::create_directories(dir / "tracks");
-  WriteTrajectoriesCsv(SimulateTrackerError(t, {}), dir / "tracks" / "trajectories.csv");
+  WriteTrajectoriesCsv(tracking::SimulateTrackerError(t, {}), dir / "tracks" / "trajectories.csv");
   WriteMarkersJson(markers, dir / "markers.json");
   return dir;
 }
@@ -102,4 +102,4 @@ TEST(IdentifyCli, BadInputsSayWhatIsWrongAndWriteNothing) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::identification

@@ -7,10 +7,10 @@
 #include <gtest/gtest.h>
 
 #include "simtree/core/error.h"
-#include "simtree/identification/test_signals.h"
+#include "simtree/identification/detail/test_signals.h"
 #include "simtree/tracking/tracker_error.h"
 
-namespace simtree {
+namespace simtree::identification {
 namespace {
 
 using ::testing::HasSubstr;
@@ -46,9 +46,10 @@ const Truth kTruth[4] = {{0.9, 0.025}, {1.05, 0.031}, {1.32, 0.045}, {1.48, 0.05
 TEST(Identify, EveryLinkWithinOnePercentInFrequencyAndFifteenInDampingUnderTrackerNoise) {
   std::vector<MarkerLink> markers;
   const Trajectories truth = MakeMarkerTrajectories(ThreeLinks(), 30.0, 2.0, 10.0, &markers);
-  TrackerErrorOptions noise;
+  tracking::TrackerErrorOptions noise;
   noise.seed = 4;
-  const IdentificationResult r = IdentifyMaterials(SimulateTrackerError(truth, noise), markers);
+  const IdentificationResult r =
+      IdentifyMaterials(tracking::SimulateTrackerError(truth, noise), markers);
   EXPECT_TRUE(r.release.found) << r.release.note;
   EXPECT_NEAR(r.window_start_s, 2.0, 0.15);
   ASSERT_EQ(r.links.size(), 4u);
@@ -76,12 +77,12 @@ TEST(Identify, EveryLinkWithinOnePercentInFrequencyAndFifteenInDampingUnderTrack
 TEST(Identify, JointPolesKeepEachLinksOwnDominantMode) {
   std::vector<MarkerLink> markers;
   const Trajectories truth = MakeMarkerTrajectories(ThreeLinks(), 30.0, 2.0, 10.0, &markers);
-  TrackerErrorOptions noise;
+  tracking::TrackerErrorOptions noise;
   noise.seed = 4;
   IdentifyOptions options;
   options.joint_poles = true;
   const IdentificationResult r =
-      IdentifyMaterials(SimulateTrackerError(truth, noise), markers, options);
+      IdentifyMaterials(tracking::SimulateTrackerError(truth, noise), markers, options);
   EXPECT_THAT(r.joint_poles_note, HasSubstr("joint poles of 4 links"));
   ASSERT_EQ(r.links.size(), 4u);
   for (int k = 0; k < 4; ++k) {
@@ -186,14 +187,15 @@ TEST(Identify, AStillLinkIsFlatNotInvented) {
   tree.links[2].theta_u.clear();
   tree.links[2].theta_w.clear();
   std::vector<MarkerLink> markers;
-  TrackerErrorOptions noise;
-  const IdentificationResult r = IdentifyMaterials(
-      SimulateTrackerError(MakeMarkerTrajectories(tree, 30.0, 1.0, 10.0, &markers), noise),
-      markers);
+  tracking::TrackerErrorOptions noise;
+  const IdentificationResult r =
+      IdentifyMaterials(tracking::SimulateTrackerError(
+                            MakeMarkerTrajectories(tree, 30.0, 1.0, 10.0, &markers), noise),
+                        markers);
   // Marker 3 hangs from marker 1, whose link swings; with that swing removed only noise is left.
   EXPECT_EQ(r.links[3].value.status, EstimateStatus::kFlat) << r.links[3].value.message;
   EXPECT_FALSE(r.links[3].value.has_damping());
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::identification

@@ -1,4 +1,4 @@
-#include "simtree/identification/joint_poles.h"
+#include "simtree/identification/detail/joint_poles.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,9 +9,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "simtree/identification/test_signals.h"
+#include "simtree/identification/detail/test_signals.h"
 
-namespace simtree {
+namespace simtree::identification {
 namespace {
 
 double Relative(double estimate, double truth) { return std::abs(estimate / truth - 1.0); }
@@ -104,4 +104,4 @@ TEST(JointPoles, RecordsOnDifferentGridsAreRefused) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::identification

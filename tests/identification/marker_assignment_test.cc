@@ -4,7 +4,7 @@
 
 #include "tree_fixture.h"
 
-namespace simtree {
+namespace simtree::identification {
 namespace {
 
 TEST(MarkerAssignment, MarkersLandOnTheirBranchesAndLinkDownTheHierarchy) {
@@ -72,4 +72,4 @@ TEST(MarkerAssignment, WithoutATrunkMarkerTheLowestBecomesTheRoot) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::identification

@@ -4,10 +4,10 @@
 #include <gtest/gtest.h>
 
 #include "simtree/core/error.h"
-#include "simtree/identification/test_signals.h"
+#include "simtree/identification/detail/test_signals.h"
 #include "test_util.h"
 
-namespace simtree {
+namespace simtree::identification {
 namespace {
 
 using ::testing::HasSubstr;
@@ -108,4 +108,4 @@ TEST(MaterialsFile, BadFilesNameTheField) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::identification

@@ -1,21 +1,21 @@
-#include "simtree/identification/release.h"
+#include "simtree/identification/detail/release.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "simtree/identification/test_signals.h"
+#include "simtree/identification/detail/test_signals.h"
 #include "simtree/tracking/tracker_error.h"
 
-namespace simtree {
+namespace simtree::identification {
 namespace {
 
 using ::testing::HasSubstr;
 
 // A tracker's errors (default options) on `truth`, drawn with `seed`.
 Trajectories Tracked(const Trajectories& truth, uint64_t seed) {
-  TrackerErrorOptions noise;
+  tracking::TrackerErrorOptions noise;
   noise.seed = seed;
-  return SimulateTrackerError(truth, noise);
+  return tracking::SimulateTrackerError(truth, noise);
 }
 
 SyntheticMarkerTree Pulled() {
@@ -95,7 +95,7 @@ TEST(Release, ARecordThatStartsSwingingOrNeverMovesStartsAtItsFirstFrame) {
   SyntheticMarkerTree still = Pulled();
   still.links[0].theta_u.clear();
   const ReleaseDetection flat = DetectRelease(
-      SimulateTrackerError(MakeMarkerTrajectories(still, 30.0, 1.0, 5.0, &markers), {}));
+      tracking::SimulateTrackerError(MakeMarkerTrajectories(still, 30.0, 1.0, 5.0, &markers), {}));
   EXPECT_FALSE(flat.found);
   EXPECT_EQ(flat.frame_index, 0);
   EXPECT_THAT(flat.note, HasSubstr("no marker moves above its noise"));
@@ -112,4 +112,4 @@ TEST(Release, FrameAtOrAfter) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::identification

@@ -3,10 +3,10 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "simtree/identification/test_signals.h"
+#include "simtree/identification/detail/test_signals.h"
 #include "test_util.h"
 
-namespace simtree {
+namespace simtree::identification {
 namespace {
 
 TEST(SpectrumPlot, OnePngPerLinkIncludingOneThatHasNoSignal) {
@@ -34,4 +34,4 @@ TEST(SpectrumPlot, OnePngPerLinkIncludingOneThatHasNoSignal) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::identification

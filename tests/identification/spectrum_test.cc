@@ -1,4 +1,4 @@
-#include "simtree/identification/spectrum.h"
+#include "simtree/identification/detail/spectrum.h"
 
 #include <cmath>
 
@@ -6,9 +6,9 @@
 
 #include "simtree/core/error.h"
 #include "simtree/core/units.h"
-#include "simtree/identification/sampled_signal.h"
+#include "simtree/identification/detail/sampled_signal.h"
 
-namespace simtree {
+namespace simtree::identification {
 namespace {
 
 TEST(Spectrum, ASinusoidOnABinPeaksAtItsAmplitude) {
@@ -79,4 +79,4 @@ TEST(SampledSignal, NoiseLevelIsTheWhiteNoiseNotTheSlowMotion) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::identification

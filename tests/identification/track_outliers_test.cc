@@ -1,4 +1,4 @@
-#include "simtree/identification/track_outliers.h"
+#include "simtree/identification/detail/track_outliers.h"
 
 #include <cmath>
 #include <random>
@@ -6,9 +6,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "simtree/identification/release.h"
+#include "simtree/identification/detail/release.h"
 
-namespace simtree {
+namespace simtree::identification {
 namespace {
 
 // One marker held still for 2 s, then swinging at 1 Hz with 8 cm amplitude, 2 mm noise.
@@ -76,4 +76,4 @@ TEST(TrackOutliers, AJumpWhileHeldIsNotTakenForTheRelease) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::identification

@@ -1,4 +1,4 @@
-#include "simtree/reconstruction/allometric_radii.h"
+#include "simtree/reconstruction/detail/allometric_radii.h"
 
 #include <cmath>
 
@@ -6,7 +6,7 @@
 
 #include "reconstruction/reconstruction_fixtures.h"
 
-namespace simtree {
+namespace simtree::reconstruction {
 namespace {
 
 TEST(AllometricRadii, PipeModelHoldsAtForksAndAnchorIsKept) {
@@ -72,4 +72,4 @@ TEST(AllometricRadii, WeightsAddUpAtForks) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::reconstruction

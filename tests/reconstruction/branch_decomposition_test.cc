@@ -1,12 +1,12 @@
-#include "simtree/reconstruction/branch_decomposition.h"
+#include "simtree/reconstruction/detail/branch_decomposition.h"
 
 #include <gtest/gtest.h>
 
 #include "reconstruction/reconstruction_fixtures.h"
 #include "simtree/core/validate.h"
-#include "simtree/reconstruction/allometric_radii.h"
+#include "simtree/reconstruction/detail/allometric_radii.h"
 
-namespace simtree {
+namespace simtree::reconstruction {
 namespace {
 
 Skeleton WithRadii(Skeleton s) {
@@ -54,4 +54,4 @@ TEST(BranchDecomposition, ARootAloneIsNoTree) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::reconstruction

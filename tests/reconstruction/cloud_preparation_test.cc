@@ -1,4 +1,4 @@
-#include "simtree/reconstruction/cloud_preparation.h"
+#include "simtree/reconstruction/detail/cloud_preparation.h"
 
 #include <cmath>
 #include <limits>
@@ -9,7 +9,7 @@
 #include "reconstruction/reconstruction_fixtures.h"
 #include "simtree/core/error.h"
 
-namespace simtree {
+namespace simtree::reconstruction {
 namespace {
 
 using ::testing::HasSubstr;
@@ -116,4 +116,4 @@ TEST(CloudPreparation, IgnoresAFewFarOutliersWhenMeasuring) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::reconstruction

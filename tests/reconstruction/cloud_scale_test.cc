@@ -1,10 +1,10 @@
-#include "simtree/reconstruction/cloud_scale.h"
+#include "simtree/reconstruction/detail/cloud_scale.h"
 
 #include <random>
 
 #include <gtest/gtest.h>
 
-namespace simtree {
+namespace simtree::reconstruction {
 namespace {
 
 std::vector<Eigen::Vector3d> Plane(double spacing, double noise, int side = 120) {
@@ -56,4 +56,4 @@ TEST(CloudScale, TooFewPointsGiveZeros) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::reconstruction

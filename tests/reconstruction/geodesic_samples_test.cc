@@ -1,11 +1,11 @@
-#include "simtree/reconstruction/geodesic_samples.h"
+#include "simtree/reconstruction/detail/geodesic_samples.h"
 
 #include <gtest/gtest.h>
 
 #include "reconstruction/reconstruction_fixtures.h"
 #include "simtree/core/units.h"
 
-namespace simtree {
+namespace simtree::reconstruction {
 namespace {
 
 struct Sampled {
@@ -71,4 +71,4 @@ TEST(GeodesicSamples, UnreachedPointsHaveNoSample) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::reconstruction

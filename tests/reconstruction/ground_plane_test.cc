@@ -1,10 +1,10 @@
-#include "simtree/reconstruction/ground_plane.h"
+#include "simtree/reconstruction/detail/ground_plane.h"
 
 #include <gtest/gtest.h>
 
 #include "reconstruction/reconstruction_fixtures.h"
 
-namespace simtree {
+namespace simtree::reconstruction {
 namespace {
 
 std::vector<Eigen::Vector3d> TrunkOnGround(bool ground) {
@@ -85,4 +85,4 @@ TEST(GroundPlane, ASegmentedTreeHasNoGround) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::reconstruction

@@ -1,8 +1,8 @@
-#include "simtree/reconstruction/point_index.h"
+#include "simtree/reconstruction/detail/point_index.h"
 
 #include <gtest/gtest.h>
 
-namespace simtree {
+namespace simtree::reconstruction {
 namespace {
 
 TEST(PointIndex, AnswersNearestRadiusAndHybridQueries) {
@@ -28,4 +28,4 @@ TEST(PointIndex, AnswersNearestRadiusAndHybridQueries) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::reconstruction

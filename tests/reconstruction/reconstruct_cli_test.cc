@@ -6,7 +6,7 @@
 #include "simtree/core/tree_json.h"
 #include "test_util.h"
 
-namespace simtree {
+namespace simtree::reconstruction {
 namespace {
 
 using ::testing::HasSubstr;
@@ -56,4 +56,4 @@ TEST(ReconstructCli, BadInputsSayWhatIsWrongAndWriteNothing) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::reconstruction

@@ -16,7 +16,7 @@
 #include "simtree/core/validate.h"
 #include "simtree/eval/reconstruction_metrics.h"
 
-namespace simtree {
+namespace simtree::reconstruction {
 namespace {
 
 using ::testing::HasSubstr;
@@ -51,12 +51,12 @@ TEST(Reconstruct, AStandInScanGivesTheTreeItCameFrom) {
   EXPECT_TRUE(FindProblems(r.tree).empty());
   EXPECT_EQ(r.tree.metadata.source, "reconstructed from stand-in");
   ASSERT_TRUE(r.trunk.found) << r.trunk.note;
-  const TruthScores s = ScoreAgainstTruth(r.tree, StandIn().truth);
-  EXPECT_GE(s.recall, 0.9) << FormatTruthScores(s);
-  EXPECT_GE(s.precision, 0.9) << FormatTruthScores(s);
-  EXPECT_LE(s.mean_skeleton_distance_m, 0.015) << FormatTruthScores(s);
-  EXPECT_LE(s.trunk_radius_error, 0.1) << FormatTruthScores(s);
-  EXPECT_LE(std::abs(s.length_error), 0.15) << FormatTruthScores(s);
+  const eval::TruthScores s = eval::ScoreAgainstTruth(r.tree, StandIn().truth);
+  EXPECT_GE(s.recall, 0.9) << eval::FormatTruthScores(s);
+  EXPECT_GE(s.precision, 0.9) << eval::FormatTruthScores(s);
+  EXPECT_LE(s.mean_skeleton_distance_m, 0.015) << eval::FormatTruthScores(s);
+  EXPECT_LE(s.trunk_radius_error, 0.1) << eval::FormatTruthScores(s);
+  EXPECT_LE(std::abs(s.length_error), 0.15) << eval::FormatTruthScores(s);
   // The parameters came from the cloud.
   EXPECT_GT(r.measured.spacing_m, 0.001);
   EXPECT_GT(r.parameters.step_m, 0.0);
@@ -100,9 +100,9 @@ TEST(Reconstruct, ATreeForkingLowFindsItsTrunkBelowTheFork) {
   EXPECT_THAT(r.trunk.note, HasSubstr("fitted on the lowest"));
   EXPECT_NEAR(r.trunk.cylinder.radius, 0.043, 0.1 * 0.043) << r.trunk.note;
   EXPECT_LT(std::acos(std::min(1.0, r.trunk.cylinder.axis.z())), 0.05) << r.trunk.note;
-  const TruthScores s = ScoreAgainstTruth(r.tree, tree);
-  EXPECT_GE(s.recall, 0.9) << FormatTruthScores(s);
-  EXPECT_GE(s.precision, 0.9) << FormatTruthScores(s);
+  const eval::TruthScores s = eval::ScoreAgainstTruth(r.tree, tree);
+  EXPECT_GE(s.recall, 0.9) << eval::FormatTruthScores(s);
+  EXPECT_GE(s.precision, 0.9) << eval::FormatTruthScores(s);
 }
 
 TEST(Reconstruct, IsDeterministic) {
@@ -186,4 +186,4 @@ TEST(Reconstruct, AScannedGroundIsFoundAndLeftOut) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::reconstruction

@@ -12,7 +12,7 @@
 #include "simtree/reconstruction/reconstruct.h"
 #include "test_util.h"
 
-namespace simtree {
+namespace simtree::reconstruction {
 namespace {
 
 class AuthorsTree : public ::testing::TestWithParam<std::tuple<const char*, double>> {};
@@ -25,11 +25,11 @@ TEST_P(AuthorsTree, StandInScanMeetsTheIssueTargets) {
   options.noise_at_2m_m = noise_mm * 1e-3;
   const auto scan = test::ScanLikeAKinect(truth, options);
   const ReconstructionResult r = ReconstructTree(scan.points, name);
-  const TruthScores s = ScoreAgainstTruth(r.tree, truth);
-  EXPECT_GE(s.recall, 0.9) << FormatTruthScores(s);
-  EXPECT_GE(s.precision, 0.9) << FormatTruthScores(s);
-  EXPECT_LE(s.mean_skeleton_distance_m, 0.015) << FormatTruthScores(s);
-  EXPECT_LE(s.trunk_radius_error, 0.1) << FormatTruthScores(s);
+  const eval::TruthScores s = eval::ScoreAgainstTruth(r.tree, truth);
+  EXPECT_GE(s.recall, 0.9) << eval::FormatTruthScores(s);
+  EXPECT_GE(s.precision, 0.9) << eval::FormatTruthScores(s);
+  EXPECT_LE(s.mean_skeleton_distance_m, 0.015) << eval::FormatTruthScores(s);
+  EXPECT_LE(s.trunk_radius_error, 0.1) << eval::FormatTruthScores(s);
 }
 
 INSTANTIATE_TEST_SUITE_P(Noise, AuthorsTree,
@@ -45,10 +45,10 @@ TEST_P(RealScan, ReconstructsACompleteConnectedTreeThatFitsThePoints) {
   ASSERT_TRUE(r.trunk.found) << r.trunk.note;
   // Connected by construction (every branch hangs on its parent); complete: most points are near
   // the model, and the tree has a real hierarchy.
-  const CloudFitScores fit = ScoreAgainstCloud(r.tree, cloud.points_);
-  EXPECT_GE(fit.share_within, 0.4) << FormatCloudFit(fit);
-  EXPECT_LE(fit.median_distance_m, 0.03) << FormatCloudFit(fit);
-  EXPECT_GE(fit.branches, 30) << FormatCloudFit(fit);
+  const eval::CloudFitScores fit = eval::ScoreAgainstCloud(r.tree, cloud.points_);
+  EXPECT_GE(fit.share_within, 0.4) << eval::FormatCloudFit(fit);
+  EXPECT_LE(fit.median_distance_m, 0.03) << eval::FormatCloudFit(fit);
+  EXPECT_GE(fit.branches, 30) << eval::FormatCloudFit(fit);
   ASSERT_GE(fit.branches_by_level.size(), 3u);
   EXPECT_LE(r.unreached_points, r.working_points / 5);
 }
@@ -57,4 +57,4 @@ INSTANTIATE_TEST_SUITE_P(Scans, RealScan,
                          ::testing::Values("tree1.xyz", "tree7.xyz", "rtwig_cloud.xyz"));
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::reconstruction

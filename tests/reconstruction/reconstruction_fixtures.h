@@ -9,8 +9,8 @@
 #include <Eigen/Geometry>
 
 #include "simtree/core/units.h"
-#include "simtree/reconstruction/local_geometry.h"
-#include "simtree/reconstruction/skeleton.h"
+#include "simtree/reconstruction/detail/local_geometry.h"
+#include "simtree/reconstruction/detail/skeleton.h"
 
 namespace simtree::test {
 
@@ -26,7 +26,7 @@ inline std::vector<Eigen::Vector3d> CylinderPoints(const Eigen::Vector3d& base,
   std::normal_distribution<double> gauss(0.0, 1.0);
   const Eigen::Vector3d a = axis.normalized();
   Eigen::Vector3d e1, e2;
-  PlaneBasis(a, &e1, &e2);
+  reconstruction::PlaneBasis(a, &e1, &e2);
   const int along = std::max(2, static_cast<int>(length / spacing));
   const int around = std::max(6, static_cast<int>(kTwoPi * radius / spacing));
   std::vector<Eigen::Vector3d> points;
@@ -42,12 +42,12 @@ inline std::vector<Eigen::Vector3d> CylinderPoints(const Eigen::Vector3d& base,
 }
 
 // A skeleton along a polyline from `from` to `to` in `count` steps, hung on `parent`.
-inline int AddSkeletonChain(Skeleton& skeleton, int parent, const Eigen::Vector3d& to, int count,
-                            double support = 10.0) {
+inline int AddSkeletonChain(reconstruction::Skeleton& skeleton, int parent,
+                            const Eigen::Vector3d& to, int count, double support = 10.0) {
   const Eigen::Vector3d from = skeleton.nodes[parent].position;
   int last = parent;
   for (int i = 1; i <= count; ++i) {
-    SkeletonNode node;
+    reconstruction::SkeletonNode node;
     node.position = from + (to - from) * (static_cast<double>(i) / count);
     node.parent = last;
     node.support = support;
@@ -59,8 +59,8 @@ inline int AddSkeletonChain(Skeleton& skeleton, int parent, const Eigen::Vector3
 
 // A Y: a 1 m stem along +Z (10 steps) forking at its top into a long branch (0.8 m, 8 steps)
 // and a short one (0.3 m, 3 steps).
-inline Skeleton YSkeleton() {
-  Skeleton s;
+inline reconstruction::Skeleton YSkeleton() {
+  reconstruction::Skeleton s;
   s.nodes.push_back({Eigen::Vector3d::Zero(), -1, 0.0, 10.0, 0.0});
   const int top = AddSkeletonChain(s, 0, {0, 0, 1}, 10);
   AddSkeletonChain(s, top, {0.4, 0, 1.7}, 8);

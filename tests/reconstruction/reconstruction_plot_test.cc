@@ -4,11 +4,11 @@
 
 #include "reconstruction/reconstruction_fixtures.h"
 #include "simtree/io/image_io.h"
-#include "simtree/reconstruction/allometric_radii.h"
-#include "simtree/reconstruction/branch_decomposition.h"
+#include "simtree/reconstruction/detail/allometric_radii.h"
+#include "simtree/reconstruction/detail/branch_decomposition.h"
 #include "test_util.h"
 
-namespace simtree {
+namespace simtree::reconstruction {
 namespace {
 
 TEST(ReconstructionPlot, DrawsTheModelOverThePoints) {
@@ -45,4 +45,4 @@ TEST(ReconstructionPlot, AnEmptyTreeStillDrawsThePoints) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::reconstruction

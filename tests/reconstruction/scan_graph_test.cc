@@ -1,11 +1,11 @@
-#include "simtree/reconstruction/scan_graph.h"
+#include "simtree/reconstruction/detail/scan_graph.h"
 
 #include <cmath>
 #include <limits>
 
 #include <gtest/gtest.h>
 
-namespace simtree {
+namespace simtree::reconstruction {
 namespace {
 
 // Points every 1 cm along x, with a gap of `gap` metres after x = 0.5.
@@ -61,4 +61,4 @@ TEST(ScanGraph, NeverBridgesOutliers) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::reconstruction

@@ -1,4 +1,4 @@
-#include "simtree/reconstruction/scene_cleanup.h"
+#include "simtree/reconstruction/detail/scene_cleanup.h"
 
 #include <algorithm>
 
@@ -6,7 +6,7 @@
 
 #include "reconstruction/reconstruction_fixtures.h"
 
-namespace simtree {
+namespace simtree::reconstruction {
 namespace {
 
 GroundPlane FlatGround() {
@@ -51,4 +51,4 @@ TEST(SceneCleanup, ObjectsOnTheGroundApartFromTheTreeAreFlagged) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::reconstruction

@@ -1,10 +1,10 @@
-#include "simtree/reconstruction/skeleton_smoothing.h"
+#include "simtree/reconstruction/detail/skeleton_smoothing.h"
 
 #include <gtest/gtest.h>
 
 #include "reconstruction/reconstruction_fixtures.h"
 
-namespace simtree {
+namespace simtree::reconstruction {
 namespace {
 
 TEST(SkeletonSmoothing, StraightensAZigzagAndKeepsEndsAndForks) {
@@ -26,4 +26,4 @@ TEST(SkeletonSmoothing, StraightensAZigzagAndKeepsEndsAndForks) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::reconstruction

@@ -1,10 +1,10 @@
-#include "simtree/reconstruction/skeleton.h"
+#include "simtree/reconstruction/detail/skeleton.h"
 
 #include <gtest/gtest.h>
 
 #include "reconstruction/reconstruction_fixtures.h"
 
-namespace simtree {
+namespace simtree::reconstruction {
 namespace {
 
 TEST(Skeleton, ChildrenLengthsChainsAndTheHeaviestPath) {
@@ -40,4 +40,4 @@ TEST(Skeleton, WithoutKeepsOrderAndLinks) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::reconstruction

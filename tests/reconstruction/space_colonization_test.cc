@@ -1,10 +1,10 @@
-#include "simtree/reconstruction/space_colonization.h"
+#include "simtree/reconstruction/detail/space_colonization.h"
 
 #include <gtest/gtest.h>
 
 #include "reconstruction/reconstruction_fixtures.h"
 
-namespace simtree {
+namespace simtree::reconstruction {
 namespace {
 
 // Attraction points every `step` along segments, with their geodesic distance from the first.
@@ -116,4 +116,4 @@ TEST(SpaceColonization, NoPointsGiveJustTheRoot) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::reconstruction

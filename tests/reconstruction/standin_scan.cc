@@ -9,7 +9,7 @@
 
 #include "simtree/core/frames.h"
 #include "simtree/core/units.h"
-#include "simtree/reconstruction/local_geometry.h"
+#include "simtree/reconstruction/detail/local_geometry.h"
 
 namespace simtree::test {
 namespace {
@@ -136,7 +136,7 @@ StandInScan ScanLikeAKinect(const Tree& tree, const StandInScanOptions& options)
         if (2.0 * r_mid / pixel < options.min_diameter_px) continue;  // too thin to see
         const double step = 0.5 * pixel;
         Eigen::Vector3d e1, e2;
-        PlaneBasis(a, &e1, &e2);
+        reconstruction::PlaneBasis(a, &e1, &e2);
         const int along = std::max(1, static_cast<int>(std::ceil(length / step)));
         const int around = std::max(
             6, static_cast<int>(std::ceil(kTwoPi * std::max(n0.radius, n1.radius) / step)));
@@ -233,7 +233,7 @@ Tree MakeStandInTree(uint64_t seed) {
   };
   auto child_direction = [&](const Eigen::Vector3d& axis, double azimuth, double elevation) {
     Eigen::Vector3d e1, e2;
-    PlaneBasis(axis, &e1, &e2);
+    reconstruction::PlaneBasis(axis, &e1, &e2);
     return (std::cos(elevation) * axis +
             std::sin(elevation) * (std::cos(azimuth) * e1 + std::sin(azimuth) * e2))
         .normalized();

@@ -1,4 +1,4 @@
-#include "simtree/reconstruction/trunk_cylinder.h"
+#include "simtree/reconstruction/detail/trunk_cylinder.h"
 
 #include <random>
 
@@ -7,7 +7,7 @@
 #include "reconstruction/reconstruction_fixtures.h"
 #include "simtree/core/units.h"
 
-namespace simtree {
+namespace simtree::reconstruction {
 namespace {
 
 // A trunk leaning 10 degrees, radius 12 cm, scanned with 3 mm noise, plus 15% stray points.
@@ -123,4 +123,4 @@ TEST(TrunkCylinder, CircleFitRecoversAPartialArc) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::reconstruction

@@ -1,10 +1,10 @@
-#include "simtree/reconstruction/twig_pruning.h"
+#include "simtree/reconstruction/detail/twig_pruning.h"
 
 #include <gtest/gtest.h>
 
 #include "reconstruction/reconstruction_fixtures.h"
 
-namespace simtree {
+namespace simtree::reconstruction {
 namespace {
 
 TEST(TwigPruning, RemovesAnUnsupportedTwigAndKeepsBranches) {
@@ -37,4 +37,4 @@ TEST(TwigPruning, NeverRemovesTheTrunkOfAnUnbranchedSkeleton) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::reconstruction

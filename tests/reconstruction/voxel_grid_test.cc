@@ -1,8 +1,8 @@
-#include "simtree/reconstruction/voxel_grid.h"
+#include "simtree/reconstruction/detail/voxel_grid.h"
 
 #include <gtest/gtest.h>
 
-namespace simtree {
+namespace simtree::reconstruction {
 namespace {
 
 TEST(VoxelGrid, AveragesThePointsOfEachVoxel) {
@@ -29,4 +29,4 @@ TEST(VoxelGrid, CoarsensUntilAtMostTheLimit) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::reconstruction

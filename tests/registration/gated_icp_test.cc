@@ -1,4 +1,4 @@
-#include "simtree/registration/gated_icp.h"
+#include "simtree/registration/detail/gated_icp.h"
 
 #include <cmath>
 #include <numbers>
@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-namespace simtree {
+namespace simtree::registration {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -256,4 +256,4 @@ TEST(Overlap, CountsGatedMatches) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::registration

@@ -1,4 +1,4 @@
-#include "simtree/registration/l1_medial_skeleton.h"
+#include "simtree/registration/detail/l1_medial_skeleton.h"
 
 #include <cmath>
 #include <numbers>
@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-namespace simtree {
+namespace simtree::registration {
 namespace {
 
 // Points all around a cylinder of `radius` along z from 0 to `length`.
@@ -70,4 +70,4 @@ TEST(L1MedialSkeleton, IsDeterministicAndHandlesEmptyInput) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::registration

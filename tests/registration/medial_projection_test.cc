@@ -1,4 +1,4 @@
-#include "simtree/registration/medial_projection.h"
+#include "simtree/registration/detail/medial_projection.h"
 
 #include <cmath>
 #include <numbers>
@@ -6,9 +6,9 @@
 
 #include <gtest/gtest.h>
 
-#include "scan/scan_fixtures.h"
+#include "preprocessing/preprocessing_fixtures.h"
 
-namespace simtree {
+namespace simtree::registration {
 namespace {
 
 // Normals over `radius`, turned towards a camera at the origin, as a view's are.
@@ -140,4 +140,4 @@ TEST(MedialProjection, WithoutNormalsPointsStay) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::registration

@@ -1,4 +1,4 @@
-#include "simtree/registration/pairwise.h"
+#include "simtree/registration/detail/pairwise.h"
 
 #include <cmath>
 
@@ -6,7 +6,7 @@
 
 #include "registration_fixtures.h"
 
-namespace simtree {
+namespace simtree::registration {
 namespace {
 
 const PairOptions kDefaults;
@@ -17,13 +17,15 @@ const test::StandInViews& Views() {
   return views;
 }
 
-PoseError ErrorOf(const Eigen::Isometry3d& target_from_source, int s, int t) {
+eval::PoseError ErrorOf(const Eigen::Isometry3d& target_from_source, int s, int t) {
   const auto& v = Views();
-  return PairPoseError(target_from_source, v.poses[s].world_from_camera,
-                       v.poses[t].world_from_camera, v.tree_points);
+  return eval::PairPoseError(target_from_source, v.poses[s].world_from_camera,
+                             v.poses[t].world_from_camera, v.tree_points);
 }
 
-PoseError ErrorOf(const PairResult& r, int s, int t) { return ErrorOf(r.target_from_source, s, t); }
+eval::PoseError ErrorOf(const PairResult& r, int s, int t) {
+  return ErrorOf(r.target_from_source, s, t);
+}
 
 // A turn by `angle_deg` about view `t`'s trunk cylinder axis, then a rise of `rise_m` along it
 // (view t's frame): how SAC-IA misses on a tree that looks alike from another side.
@@ -50,7 +52,7 @@ TEST(Pairwise, RegistersNeighboursAndOppositeViewsAtTheTree) {
   const PairOptions options;
   for (const auto& [s, t] : {std::pair{1, 0}, std::pair{4, 0}, std::pair{5, 0}}) {
     const PairResult r = RegisterPair(Views().views[s], Views().views[t], options);
-    const PoseError e = ErrorOf(r, s, t);
+    const eval::PoseError e = ErrorOf(r, s, t);
     EXPECT_TRUE(r.ok) << s << "->" << t << ": " << r.status;
     EXPECT_LT(e.rotation_deg, 2.0) << s << "->" << t;
     EXPECT_LT(e.tree_rms_m, 0.025) << s << "->" << t;
@@ -192,7 +194,7 @@ TEST(Pairwise, TheSymmetricFineStageLiesHalfwayBetweenBothDirections) {
   const Eigen::Vector3d centre = v.views[s].cloud->GetCenter();
   EXPECT_LT((m * centre - 0.5 * (f * centre + b * centre)).norm(), 1e-9);
   EXPECT_GT(mean.icp.fitness, 0.3);
-  const PoseError e = ErrorOf(m, s, t);
+  const eval::PoseError e = ErrorOf(m, s, t);
   EXPECT_LT(e.rotation_deg, 2.0);
   EXPECT_LT(e.tree_rms_m, 0.025);
 }
@@ -217,8 +219,8 @@ TEST(Pairwise, TwoDirectionsInDifferentPlacesAreNotAveraged) {
           .share;
   EXPECT_GE(result.icp.fitness, stuck_overlap);
   // Not averaged: the forward result as it was, or one refined from the reverse.
-  const PoseError e = ErrorOf(result.icp.target_from_source, s, t);
-  const PoseError e_stuck = ErrorOf(stuck.icp.target_from_source, s, t);
+  const eval::PoseError e = ErrorOf(result.icp.target_from_source, s, t);
+  const eval::PoseError e_stuck = ErrorOf(stuck.icp.target_from_source, s, t);
   EXPECT_TRUE(e.rotation_deg < 2.0 || std::abs(e.rotation_deg - e_stuck.rotation_deg) < 1e-9)
       << e.rotation_deg << " vs stuck " << e_stuck.rotation_deg;
 }
@@ -264,10 +266,10 @@ TEST(Pairwise, OwnKeyRegionsHoldTheForkWhenOneGroundIsSeenHigh) {
   const PairResult r = RegisterPair(high, v.views[0], own);
   EXPECT_TRUE(r.ok) << r.status;
   EXPECT_TRUE(r.own_key_regions);
-  const PoseError e = ErrorOf(r, 1, 0);
+  const eval::PoseError e = ErrorOf(r, 1, 0);
   EXPECT_LT(e.rotation_deg, 2.0);
   EXPECT_LT(e.tree_rms_m, 0.025);
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::registration

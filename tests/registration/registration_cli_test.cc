@@ -14,7 +14,7 @@
 
 namespace fs = std::filesystem;
 
-namespace simtree {
+namespace simtree::registration {
 namespace {
 
 using ::testing::HasSubstr;
@@ -125,8 +125,8 @@ TEST(RegisterCli, AnAllNanCloudFileIsFlaggedByNameAndTheOthersRegister) {
   test::WriteText(clouds / "view_02.xyz", nan_lines);
 
   const fs::path out = tmp / "reg";
-  r = test::RunCli("register \"" + clouds.string() + "\" --voxel-factor 1 --out \"" +
-                   out.string() + "\"");
+  r = test::RunCli("register \"" + clouds.string() + "\" --voxel-factor 1 --out \"" + out.string() +
+                   "\"");
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_THAT(r.output, HasSubstr("view_02.xyz: every point has NaN or infinite coordinates"));
   EXPECT_THAT(r.output, Not(HasSubstr("internal error")));
@@ -162,4 +162,4 @@ TEST(RegisterCli, RefusesToWriteOverItsInput) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::registration

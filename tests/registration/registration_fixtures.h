@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "simtree/eval/registration_metrics.h"
+#include "simtree/preprocessing/depth_to_cloud.h"
+#include "simtree/preprocessing/preprocess_view.h"
 #include "simtree/registration/registration_view.h"
-#include "simtree/scan/depth_to_cloud.h"
-#include "simtree/scan/preprocess.h"
 #include "stand_in_scene.h"
 #include "test_util.h"
 
@@ -16,16 +16,16 @@ namespace simtree::test {
 struct StandInViews {
   Tree tree;
   std::vector<ViewPose> poses;
-  std::vector<RegistrationView> views;
+  std::vector<registration::RegistrationView> views;
   std::vector<Eigen::Vector3d> tree_points;
 };
 
 inline StandInViews MakeStandInViews(int views, double step_deg, uint64_t seed,
-                                     const RegistrationViewOptions& options = {},
+                                     const registration::RegistrationViewOptions& options = {},
                                      const std::string& tree_file = "tree01.txt") {
   StandInViews out;
   out.tree = LoadDemoTree(SharedData("authors-demo/tree_model/" + tree_file));
-  out.tree_points = TreeSamplePoints(out.tree);
+  out.tree_points = eval::TreeSamplePoints(out.tree);
   StandInOptions scene;
   scene.views = views;
   scene.angle_step_deg = step_deg;
@@ -36,8 +36,9 @@ inline StandInViews MakeStandInViews(int views, double step_deg, uint64_t seed,
   for (size_t v = 0; v < out.poses.size(); ++v) {
     const RgbdImage image =
         RenderStandInView(out.tree, out.poses[v].world_from_camera, scene, seed * 1000 + v);
-    const PreprocessResult pre = PreprocessView(DepthToCloud(image), {}, out.poses[v].name);
-    out.views.push_back(PrepareView(out.poses[v].name, pre, options));
+    const preprocessing::PreprocessResult pre =
+        preprocessing::PreprocessView(preprocessing::DepthToCloud(image), {}, out.poses[v].name);
+    out.views.push_back(registration::PrepareView(out.poses[v].name, pre, options));
   }
   return out;
 }

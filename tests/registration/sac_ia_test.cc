@@ -1,4 +1,4 @@
-#include "simtree/registration/sac_ia.h"
+#include "simtree/registration/detail/sac_ia.h"
 
 #include <cmath>
 #include <numbers>
@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 #include <open3d/pipelines/registration/Feature.h>
 
-namespace simtree {
+namespace simtree::registration {
 namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
@@ -119,4 +119,4 @@ TEST(SampleConsensus, TooFewPointsFindNothing) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::registration

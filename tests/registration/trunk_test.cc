@@ -1,12 +1,12 @@
-#include "simtree/registration/trunk.h"
+#include "simtree/registration/detail/trunk.h"
 
 #include <cmath>
 
 #include <gtest/gtest.h>
 
-#include "scan/scan_fixtures.h"
+#include "preprocessing/preprocessing_fixtures.h"
 
-namespace simtree {
+namespace simtree::registration {
 namespace {
 
 const Eigen::Vector3d kUp = -Eigen::Vector3d::UnitY();
@@ -92,4 +92,4 @@ TEST(Trunk, NoUprightStemMeansNoTrunk) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::registration

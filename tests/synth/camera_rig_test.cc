@@ -1,4 +1,4 @@
-#include "simtree/synth/camera_rig.h"
+#include "simtree/synth/detail/camera_rig.h"
 
 #include <cmath>
 #include <numbers>
@@ -8,7 +8,7 @@
 #include "core/tree_fixtures.h"
 #include "simtree/core/error.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
@@ -115,4 +115,4 @@ TEST(PullCameraPose, StandsToTheSideOfThePullAndSeesTheTree) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

@@ -1,10 +1,10 @@
-#include "simtree/synth/contact_sheet.h"
+#include "simtree/synth/detail/contact_sheet.h"
 
 #include <gtest/gtest.h>
 
 #include "simtree/core/error.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 TEST(ContactSheet, EveryViewAppearsAsColourBesideDepth) {
@@ -43,4 +43,4 @@ TEST(ContactSheet, MismatchedOrMissingImagesAreRefused) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

@@ -1,4 +1,4 @@
-#include "simtree/synth/fem_beam_element.h"
+#include "simtree/synth/detail/fem_beam_element.h"
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
@@ -8,7 +8,7 @@
 #include "simtree/core/units.h"
 #include "synth/fem_test_trees.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 BeamElement SomeElement(double r_a, double r_b) {
@@ -111,4 +111,4 @@ TEST(FemBeamElement, PointOperatorInterpolatesNodesAndRigidMotion) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

@@ -1,4 +1,4 @@
-#include "simtree/synth/fem_effective_mass.h"
+#include "simtree/synth/detail/fem_effective_mass.h"
 
 #include <cmath>
 
@@ -9,7 +9,7 @@
 #include "simtree/core/units.h"
 #include "synth/fem_test_trees.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 using ::testing::HasSubstr;
@@ -123,4 +123,4 @@ TEST(FemEffectiveMass, LowestSwayModeIsMinusOneWhenNoModeSways) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

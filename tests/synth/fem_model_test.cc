@@ -1,4 +1,4 @@
-#include "simtree/synth/fem_model.h"
+#include "simtree/synth/detail/fem_model.h"
 
 #include <cmath>
 #include <limits>
@@ -9,11 +9,11 @@
 
 #include "core/tree_fixtures.h"
 #include "simtree/core/error.h"
-#include "simtree/synth/fem_modes.h"
-#include "simtree/synth/fem_response.h"
+#include "simtree/synth/detail/fem_modes.h"
+#include "simtree/synth/detail/fem_response.h"
 #include "synth/fem_test_trees.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 using ::testing::HasSubstr;
@@ -284,4 +284,4 @@ TEST(FemModel, MergesCoincidentNodes) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

@@ -1,4 +1,4 @@
-#include "simtree/synth/fem_modes.h"
+#include "simtree/synth/detail/fem_modes.h"
 
 #include <cmath>
 #include <map>
@@ -10,7 +10,7 @@
 #include "synth/fem_test_trees.h"
 #include "test_util.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 void ExpectMassOrthonormal(const FemModel& model, const ModalBasis& modes, double tol) {
@@ -177,4 +177,4 @@ TEST(FemModes, BadOptionsAreInputErrors) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

@@ -1,4 +1,4 @@
-#include "simtree/synth/fem_response.h"
+#include "simtree/synth/detail/fem_response.h"
 
 #include <cmath>
 #include <limits>
@@ -10,7 +10,7 @@
 #include "simtree/core/error.h"
 #include "synth/fem_test_trees.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 using ::testing::HasSubstr;
@@ -271,4 +271,4 @@ TEST(FemResponse, BadInputIsAnInputError) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

@@ -9,13 +9,13 @@
 #include "simtree/core/frames.h"
 #include "simtree/core/tree.h"
 #include "simtree/core/units.h"
-#include "simtree/synth/wood.h"
+#include "simtree/synth/detail/wood.h"
 
 namespace simtree::test {
 
 // Green wood without damping unless a test asks for it.
-inline WoodProperties TestWood() {
-  WoodProperties wood;
+inline synth::WoodProperties TestWood() {
+  synth::WoodProperties wood;
   wood.youngs_modulus_pa = 8.0e9;
   wood.shear_modulus_pa = 0.5e9;
   wood.density_kg_m3 = 900.0;
@@ -69,7 +69,7 @@ inline Tree YTree(double trunk_radius = 0.08, double child_radius = 0.03, double
 
 // Closed forms of a uniform Euler-Bernoulli cantilever of solid circular section.
 inline double SecondMoment(double r) { return kPi * std::pow(r, 4) / 4.0; }
-inline double CantileverFrequencyHz(double beta_l, const WoodProperties& w, double length,
+inline double CantileverFrequencyHz(double beta_l, const synth::WoodProperties& w, double length,
                                     double radius) {
   const double ei = w.youngs_modulus_pa * SecondMoment(radius);
   const double rho_a = w.density_kg_m3 * kPi * radius * radius;

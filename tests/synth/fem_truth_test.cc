@@ -1,4 +1,4 @@
-#include "simtree/synth/fem_truth.h"
+#include "simtree/synth/detail/fem_truth.h"
 
 #include <cmath>
 #include <complex>
@@ -10,7 +10,7 @@
 #include "simtree/core/error.h"
 #include "synth/fem_test_trees.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 using ::testing::HasSubstr;
@@ -206,4 +206,4 @@ TEST(FemTruth, BadInputIsAnInputError) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

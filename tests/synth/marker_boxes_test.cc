@@ -1,5 +1,5 @@
-#include "simtree/synth/marker_boxes.h"
-#include "simtree/synth/camera_rig.h"
+#include "simtree/synth/detail/marker_boxes.h"
+#include "simtree/synth/detail/camera_rig.h"
 
 #include <gtest/gtest.h>
 
@@ -7,12 +7,12 @@
 
 #include "simtree/core/error.h"
 #include "simtree/io/image_io.h"
-#include "simtree/synth/rgbd_false_color.h"
-#include "simtree/synth/rgbd_renderer.h"
-#include "simtree/synth/sensor_pose.h"
+#include "simtree/synth/detail/rgbd_false_color.h"
+#include "simtree/synth/detail/rgbd_renderer.h"
+#include "simtree/synth/detail/sensor_pose.h"
 #include "synth/sensor_fixtures.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 // Whether pixel centre (x, y) lies in a box [x, y, w, h].
@@ -161,4 +161,4 @@ TEST(MarkerBoxes, RefusesLabelsOfAnotherSize) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

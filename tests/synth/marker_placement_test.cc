@@ -1,4 +1,4 @@
-#include "simtree/synth/marker_placement.h"
+#include "simtree/synth/detail/marker_placement.h"
 
 #include <algorithm>
 #include <set>
@@ -7,11 +7,11 @@
 
 #include "simtree/core/error.h"
 #include "simtree/core/tree_json.h"
+#include "simtree/synth/detail/tree_generator.h"
 #include "simtree/synth/species.h"
-#include "simtree/synth/tree_generator.h"
 #include "test_util.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 const Eigen::Vector3d kCamera(0.0, -2.5, 1.4);
@@ -171,4 +171,4 @@ TEST(MarkerPlacement, BadInputsAreRefused) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

@@ -1,5 +1,5 @@
-#include "simtree/synth/rgbd_renderer.h"
-#include "simtree/synth/camera_rig.h"
+#include "simtree/synth/detail/rgbd_renderer.h"
+#include "simtree/synth/detail/camera_rig.h"
 
 #include <gtest/gtest.h>
 
@@ -14,11 +14,11 @@
 #include "simtree/core/error.h"
 #include "simtree/io/depth_colormap.h"
 #include "simtree/io/image_io.h"
-#include "simtree/synth/rgbd_false_color.h"
-#include "simtree/synth/sensor_pose.h"
+#include "simtree/synth/detail/rgbd_false_color.h"
+#include "simtree/synth/detail/sensor_pose.h"
 #include "synth/sensor_fixtures.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 const Eigen::Vector3d kNaN3(std::numeric_limits<double>::quiet_NaN(), 0, 0);
@@ -450,4 +450,4 @@ TEST(RgbdRenderer, RefusesABadCameraOrSensor) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

@@ -1,10 +1,10 @@
-#include "simtree/synth/segment_grid.h"
+#include "simtree/synth/detail/segment_grid.h"
 
 #include <random>
 
 #include <gtest/gtest.h>
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 using Vec3 = Eigen::Vector3d;
@@ -85,4 +85,4 @@ TEST(SegmentGrid, FindsEverySegmentNearAQuery) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

@@ -8,7 +8,7 @@
 #include "simtree/core/frames.h"
 #include "simtree/core/tree.h"
 #include "simtree/core/tree_file.h"
-#include "simtree/synth/sensor_scene.h"
+#include "simtree/synth/detail/sensor_scene.h"
 #include "test_util.h"
 
 namespace simtree::test {
@@ -36,8 +36,8 @@ inline Tree VerticalCylinder(double x, double y, double height, double radius) {
 }
 
 // Nothing but what the test adds: no ground, no hedge, no objects.
-inline SceneOptions BareScene() {
-  SceneOptions o;
+inline synth::SceneOptions BareScene() {
+  synth::SceneOptions o;
   o.ground = false;
   o.hedge = false;
   return o;

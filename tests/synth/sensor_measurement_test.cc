@@ -1,4 +1,4 @@
-#include "simtree/synth/sensor_measurement.h"
+#include "simtree/synth/detail/sensor_measurement.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 
 #include "simtree/core/error.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 // A truth image of the sensor's size filled with one surface at depth z facing the camera.
@@ -162,4 +162,4 @@ TEST(MeasureDepth, RefusesATruthOfTheWrongSizeOrWithABadDepth) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

@@ -1,4 +1,4 @@
-#include "simtree/synth/sensor_model.h"
+#include "simtree/synth/detail/sensor_model.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 
 #include "simtree/core/error.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
@@ -136,4 +136,4 @@ TEST(SensorModel, ValidationNamesTheField) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

@@ -1,4 +1,4 @@
-#include "simtree/synth/sensor_scene.h"
+#include "simtree/synth/detail/sensor_scene.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include "simtree/core/error.h"
 #include "synth/sensor_fixtures.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 const Eigen::Vector3d kNaN(std::numeric_limits<double>::quiet_NaN(), 0, 0);
@@ -212,4 +212,4 @@ TEST(SensorScene, RefusesBadInput) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

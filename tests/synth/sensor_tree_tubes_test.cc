@@ -1,4 +1,4 @@
-#include "simtree/synth/sensor_tree_tubes.h"
+#include "simtree/synth/detail/sensor_tree_tubes.h"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 
 #include "core/tree_fixtures.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 TEST(TreeTubes, SidesKeepTheFacetsWithinTheTolerance) {
@@ -54,4 +54,4 @@ TEST(TreeTubes, RingsLieOnTheTrueCirclesAtTheNodes) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

@@ -20,12 +20,12 @@
 #include "simtree/core/progress.h"
 #include "simtree/core/tube_mesh.h"
 #include "simtree/io/mesh_io.h"
-#include "simtree/synth/fem_model.h"
-#include "simtree/synth/fem_modes.h"
-#include "simtree/synth/marker_placement.h"
+#include "simtree/synth/detail/fem_model.h"
+#include "simtree/synth/detail/fem_modes.h"
+#include "simtree/synth/detail/marker_placement.h"
+#include "simtree/synth/detail/tree_generator.h"
+#include "simtree/synth/detail/tree_sketch.h"
 #include "simtree/synth/species.h"
-#include "simtree/synth/tree_generator.h"
-#include "simtree/synth/tree_sketch.h"
 
 namespace {
 
@@ -44,12 +44,13 @@ std::vector<uint64_t> ParseSeeds(const std::string& list) {
 }
 
 // " f1 1.234 Hz zeta1 0.0456": the FEM oracle's first mode of the tree.
-std::string FirstMode(const simtree::Tree& tree, const simtree::SpeciesParams& species) {
-  const simtree::WoodProperties wood = species.wood.Properties();
-  simtree::ModesOptions modes;
+std::string FirstMode(const simtree::Tree& tree, const simtree::synth::SpeciesParams& species) {
+  const simtree::synth::WoodProperties wood = species.wood.Properties();
+  simtree::synth::ModesOptions modes;
   modes.count = 1;
-  const double f1 = ComputeModes(simtree::FemModel(tree, wood, SpeciesFemOptions(species)), modes)
-                        .frequency_hz[0];
+  const double f1 =
+      ComputeModes(simtree::synth::FemModel(tree, wood, SpeciesFemOptions(species)), modes)
+          .frequency_hz[0];
   char text[64];
   std::snprintf(text, sizeof(text), ", f1 %.3f Hz zeta1 %.4f", f1, wood.DampingRatioAt(f1));
   return text;
@@ -59,6 +60,7 @@ std::string FirstMode(const simtree::Tree& tree, const simtree::SpeciesParams& s
 
 int main(int argc, char** argv) {
   using namespace simtree;
+  using namespace simtree::synth;
   if (argc < 2) {
     std::fprintf(stderr,
                  "usage: %s OUT_DIR [species ...] [--seeds 1,2|1-30] [--bark] [--markers] [--json] "

@@ -8,7 +8,7 @@
 #include "simtree/core/error.h"
 #include "test_util.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 // The InputError message of `f`, or a failure when it does not throw one.
@@ -222,4 +222,4 @@ TEST(Species, FilesThatCannotBeReadAreRefused) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

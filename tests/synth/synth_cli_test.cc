@@ -16,12 +16,12 @@
 #include "simtree/io/capture.h"
 #include "simtree/io/ground_truth.h"
 #include "simtree/io/trajectories.h"
-#include "simtree/synth/synth_capture.h"
+#include "simtree/synth/synth.h"
 #include "test_util.h"
 
 namespace fs = std::filesystem;
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 using ::testing::HasSubstr;
@@ -224,4 +224,4 @@ TEST(SynthCli, HelpTeachesAndListsSpecies) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

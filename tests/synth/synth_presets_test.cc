@@ -8,12 +8,12 @@
 #include <string>
 
 #include "simtree/core/progress.h"
-#include "simtree/synth/fem_model.h"
-#include "simtree/synth/fem_modes.h"
+#include "simtree/synth/detail/fem_model.h"
+#include "simtree/synth/detail/fem_modes.h"
+#include "simtree/synth/detail/tree_generator.h"
 #include "simtree/synth/species.h"
-#include "simtree/synth/tree_generator.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 // Paper Table IV: natural frequency range per species (Hz).
@@ -54,4 +54,4 @@ INSTANTIATE_TEST_SUITE_P(Synth, PresetFrequency,
                          });
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

@@ -1,5 +1,5 @@
-#include "simtree/synth/textures.h"
-#include "simtree/synth/camera_rig.h"
+#include "simtree/synth/detail/textures.h"
+#include "simtree/synth/detail/camera_rig.h"
 
 #include <gtest/gtest.h>
 
@@ -7,10 +7,10 @@
 #include <numbers>
 
 #include "simtree/core/error.h"
-#include "simtree/synth/rgbd_false_color.h"
-#include "simtree/synth/sensor_pose.h"
+#include "simtree/synth/detail/rgbd_false_color.h"
+#include "simtree/synth/detail/sensor_pose.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 double Redness(const Rgb& c) { return c.x() - 0.5 * (c.y() + c.z()); }
@@ -77,4 +77,4 @@ TEST(SensorPose, OnlyRigidPosesPass) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

@@ -1,4 +1,4 @@
-#include "simtree/synth/tree_generator.h"
+#include "simtree/synth/detail/tree_generator.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,10 +11,10 @@
 #include "simtree/core/tree_json.h"
 #include "simtree/core/units.h"
 #include "simtree/core/validate.h"
-#include "simtree/synth/segment_grid.h"
+#include "simtree/synth/detail/segment_grid.h"
 #include "test_util.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 using Vec3 = Eigen::Vector3d;
@@ -459,4 +459,4 @@ TEST(TreeGenerator, CustomSpeciesWithSixLevelsGrows) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

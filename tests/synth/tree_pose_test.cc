@@ -1,10 +1,10 @@
-#include "simtree/synth/tree_pose.h"
+#include "simtree/synth/detail/tree_pose.h"
 
 #include <gtest/gtest.h>
 
 #include "core/tree_fixtures.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 TEST(TreePose, RestPoseHoldsEveryNodeInFileOrder) {
@@ -39,4 +39,4 @@ TEST(TreePose, PointAtFollowsRestArcLengthOnTheDeformedNodes) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

@@ -1,10 +1,10 @@
-#include "simtree/synth/tree_sketch.h"
+#include "simtree/synth/detail/tree_sketch.h"
 
 #include <gtest/gtest.h>
 
 #include "core/tree_fixtures.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 bool IsBackground(const RgbImage& image, int x, int y) {
@@ -43,4 +43,4 @@ TEST(TreeSketch, EmptyTreeGivesATinyImage) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

@@ -1,4 +1,4 @@
-#include "simtree/synth/wood.h"
+#include "simtree/synth/detail/wood.h"
 
 #include <cmath>
 #include <limits>
@@ -7,7 +7,7 @@
 
 #include "simtree/core/error.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 TEST(Wood, RayleighCoefficientsHitBothAnchors) {
@@ -62,4 +62,4 @@ TEST(Wood, ValidationNamesTheField) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::synth

@@ -6,7 +6,7 @@
 
 #include "simtree/core/error.h"
 
-namespace simtree {
+namespace simtree::tracking {
 namespace {
 
 // Two markers swinging for 20 s at 30 fps.
@@ -114,4 +114,4 @@ TEST(TrackerError, BadOptionsAndMismatchedVisibilityAreRefused) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::tracking

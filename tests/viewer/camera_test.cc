@@ -1,13 +1,13 @@
 // Cameras: a pixel's ray passes through the points that project to that pixel, a calibrated
 // camera projects as its intrinsics do, and framing keeps a box in view.
 
-#include "simtree/viewer/camera.h"
+#include "simtree/viewer/detail/camera.h"
 
 #include <gtest/gtest.h>
 
 #include "simtree/core/units.h"
 
-namespace simtree {
+namespace simtree::viewer {
 namespace {
 
 TEST(Camera, PixelRayAndProjectAgree) {
@@ -82,4 +82,4 @@ TEST(Camera, FrameKeepsTheBoxInView) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::viewer

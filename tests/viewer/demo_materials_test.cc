@@ -8,7 +8,7 @@
 #include "simtree/core/legacy_format.h"
 #include "viewer_fixtures.h"
 
-namespace simtree {
+namespace simtree::viewer {
 namespace {
 
 TEST(DemoMaterials, MatchTheAuthorsParameterFileLevelByLevel) {
@@ -38,4 +38,4 @@ TEST(DemoMaterials, FillOnlyWhatIsMissing) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::viewer

@@ -1,7 +1,7 @@
 // Leaf placement: only on terminal branches, as many as the density asks, on the branch surface,
 // deterministic for a seed, capped, and bad options refused.
 
-#include "simtree/viewer/foliage.h"
+#include "simtree/viewer/detail/foliage.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include "simtree/core/error.h"
 #include "viewer_fixtures.h"
 
-namespace simtree {
+namespace simtree::viewer {
 namespace {
 
 TEST(Foliage, LeavesGrowOnTerminalBranchesOnly) {
@@ -81,4 +81,4 @@ TEST(Foliage, BadOptionsAreRefused) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::viewer

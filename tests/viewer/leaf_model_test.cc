@@ -1,7 +1,7 @@
 // The authors' leaf models: both shipped folders read, the blade's upper side faces +z, and every
 // kind of broken file is an InputError naming the file and line.
 
-#include "simtree/viewer/leaf_model.h"
+#include "simtree/viewer/detail/leaf_model.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 #include "simtree/core/error.h"
 #include "viewer_fixtures.h"
 
-namespace simtree {
+namespace simtree::viewer {
 namespace {
 
 using ::testing::HasSubstr;
@@ -103,4 +103,4 @@ TEST(LeafModel, CorruptTextureOrMissingFileIsAnInputErrorNamingIt) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::viewer

@@ -2,7 +2,7 @@
 // stays, the authors' leaves keep their outline, area and texture coordinates with far fewer
 // triangles, the petiole is thinned, and a bad tolerance is an InputError.
 
-#include "simtree/viewer/leaf_simplify.h"
+#include "simtree/viewer/detail/leaf_simplify.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -16,7 +16,7 @@
 #include "simtree/core/error.h"
 #include "viewer_fixtures.h"
 
-namespace simtree {
+namespace simtree::viewer {
 namespace {
 
 // A 1 x 1 blade in z = height(x, y), n x n quads, u = x, v = y; a straight petiole to (0, 0.5).
@@ -187,4 +187,4 @@ TEST(LeafSimplify, ABadToleranceIsAnInputError) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::viewer

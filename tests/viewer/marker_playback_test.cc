@@ -8,10 +8,10 @@
 
 #include "simtree/core/error.h"
 #include "simtree/dynamics/recorders.h"
-#include "simtree/viewer/live_pull.h"
+#include "simtree/viewer/detail/live_pull.h"
 #include "viewer_fixtures.h"
 
-namespace simtree {
+namespace simtree::viewer {
 namespace {
 
 using ::testing::HasSubstr;
@@ -55,22 +55,22 @@ TEST(MarkerPlayback, CameraFrameTracksNeedThePose) {
 TEST(MarkerPlayback, ASimulatedRunPlayedBackAgainstItselfHasNoError) {
   const Tree tree = test::ViewerTree();
   const auto dir = test::TempDir();
-  SimulationOptions options;
+  dynamics::SimulationOptions options;
   options.duration_s = 2.0;
   options.fps = 30;
-  PullSchedule pull;
+  dynamics::PullSchedule pull;
   pull.rope = {.branch = 3, .arc_length = -1, .anchor = {1, 0, 0}, .force_n = 20};
   pull.hold_s = 0.3;
   pull.release_s = 0.8;
   options.pull = pull;
-  const auto markers = AutoMarkers(tree, 2, pull.rope);
-  MarkerTrackWriter writer(markers, dir / "markers.csv", dir / "markers.json");
-  FrameRecorder* recorders[] = {&writer};
-  RunSimulation(tree, options, recorders);
+  const auto markers = dynamics::AutoMarkers(tree, 2, pull.rope);
+  dynamics::MarkerTrackWriter writer(markers, dir / "markers.csv", dir / "markers.json");
+  dynamics::FrameRecorder* recorders[] = {&writer};
+  dynamics::RunSimulation(tree, options, recorders);
   const Trajectories measured = ReadTracksInWorld(dir / "markers.csv", std::nullopt);
 
   // The viewer's stepping with the same pull: frame for frame the same motion.
-  TreeDynamics sim(tree, options.dynamics);
+  dynamics::TreeDynamics sim(tree, options.dynamics);
   LivePull live(sim, pull);
   double worst = 0.0, moved = 0.0;
   for (int frame = 1; frame <= 60; ++frame) {
@@ -83,7 +83,7 @@ TEST(MarkerPlayback, ASimulatedRunPlayedBackAgainstItselfHasNoError) {
   EXPECT_GT(moved, 0.01);  // the pulled point did move
   EXPECT_LT(worst, 2e-6);  // and the playback follows it to the written precision
   // A different material drifts away from the measurement.
-  TreeDynamics other(tree, options.dynamics);
+  dynamics::TreeDynamics other(tree, options.dynamics);
   Material stiffer = other.material(3);
   stiffer.SetStiffness(stiffer.stiffness * 4);
   other.SetMaterial(3, stiffer);
@@ -93,4 +93,4 @@ TEST(MarkerPlayback, ASimulatedRunPlayedBackAgainstItselfHasNoError) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::viewer

@@ -2,7 +2,7 @@
 // edit reaches every branch of the level, the simulation uses the new values at once, and
 // impossible values are refused.
 
-#include "simtree/viewer/material_edit.h"
+#include "simtree/viewer/detail/material_edit.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include "simtree/core/units.h"
 #include "viewer_fixtures.h"
 
-namespace simtree {
+namespace simtree::viewer {
 namespace {
 
 Material Spread() {
@@ -54,7 +54,7 @@ TEST(MaterialEdit, BadValuesAreRefused) {
 
 TEST(MaterialEdit, LevelEditsReachTheSimulationLive) {
   const Tree tree = test::ViewerTree();
-  TreeDynamics sim(tree);
+  dynamics::TreeDynamics sim(tree);
   const auto level1 = BranchesOfLevel(tree, 1);
   EXPECT_EQ(level1, (std::vector<int>{1, 2}));
   EXPECT_EQ(EditMaterials(sim, level1, MaterialProperty::kFrequency, 3.0), 2);
@@ -66,7 +66,7 @@ TEST(MaterialEdit, LevelEditsReachTheSimulationLive) {
   // 2 f times a second.
   EditMaterials(sim, {3}, MaterialProperty::kFrequency, 4.0);
   EditMaterials(sim, {3}, MaterialProperty::kDamping, 0.0);
-  ModalState state;
+  dynamics::ModalState state;
   state.q = {0.01, 0, 0};
   sim.SetModalState(3, state);
   int crossings = 0;
@@ -81,4 +81,4 @@ TEST(MaterialEdit, LevelEditsReachTheSimulationLive) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::viewer

@@ -1,14 +1,14 @@
 // Picking: the ray under a pixel finds the branch drawn there, with its arc length, the nearest
 // of two in line, nothing in empty sky; a wrong node count is refused.
 
-#include "simtree/viewer/picking.h"
+#include "simtree/viewer/detail/picking.h"
 
 #include <gtest/gtest.h>
 
 #include "simtree/core/error.h"
 #include "viewer_fixtures.h"
 
-namespace simtree {
+namespace simtree::viewer {
 namespace {
 
 std::vector<Eigen::Vector3f> RestNodes(const Tree& tree) {
@@ -85,4 +85,4 @@ TEST(Picking, ThinTwigsAreCaughtWithinAFewPixels) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::viewer

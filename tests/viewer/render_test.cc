@@ -2,7 +2,7 @@
 // frames, a pull moves it, side by side puts the capture on the left, a corrupt leaf texture
 // leaves a tree without leaves, and the frames become a video.
 
-#include "simtree/viewer/headless_render.h"
+#include "simtree/viewer/render.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -13,7 +13,7 @@
 #include "simtree/viewer/video.h"
 #include "viewer_fixtures.h"
 
-namespace simtree {
+namespace simtree::viewer {
 namespace {
 
 using ::testing::HasSubstr;
@@ -41,11 +41,11 @@ int ChangedPixels(const RgbImage& a, const RgbImage& b) {
   return n;
 }
 
-SimulationOptions ShortPull() {
-  SimulationOptions sim;
+dynamics::SimulationOptions ShortPull() {
+  dynamics::SimulationOptions sim;
   sim.duration_s = 0.6;
   sim.fps = 10;
-  PullSchedule pull;
+  dynamics::PullSchedule pull;
   pull.rope = {.branch = 1, .arc_length = -1, .anchor = {2, 0, -1}, .force_n = 600};
   pull.hold_s = 0.2;
   pull.release_s = 10;
@@ -69,7 +69,7 @@ TEST(Render, FramesShowTheTreeAndThePullMovesIt) {
   EXPECT_GT(TreePixels(first, options.style), 300);
   EXPECT_GT(ChangedPixels(first, last), 30);
   // Nothing pulls: the frames do not change.
-  SimulationOptions still = ShortPull();
+  dynamics::SimulationOptions still = ShortPull();
   still.pull.reset();
   RenderSimulation(tree, still, nullptr, {}, options, dir / "still");
   EXPECT_EQ(ChangedPixels(ReadColorImage(dir / "still" / "000000.png"),
@@ -94,7 +94,7 @@ TEST(Render, ACorruptLeafTextureLeavesTheTreeBare) {
   RenderOptions options;
   options.width = 160;
   options.height = 120;
-  SimulationOptions sim;
+  dynamics::SimulationOptions sim;
   sim.duration_s = 0;
   // With leaves there are more tree pixels than without.
   RenderSimulation(tree, sim, good.foliage_or_null(), good.leaves, options, dir / "leafy");
@@ -162,4 +162,4 @@ TEST(Render, FramesBecomeAVideo) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::viewer

@@ -1,13 +1,13 @@
 // Scripted input: every action parses with its numbers, and mistakes name the line.
 
-#include "simtree/viewer/script.h"
+#include "simtree/viewer/detail/script.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "simtree/core/error.h"
 
-namespace simtree {
+namespace simtree::viewer {
 namespace {
 
 using ::testing::HasSubstr;
@@ -82,4 +82,4 @@ TEST(Script, MistakesNameTheLine) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::viewer

@@ -9,7 +9,7 @@
 #include "simtree/io/image_io.h"
 #include "viewer_fixtures.h"
 
-namespace simtree {
+namespace simtree::viewer {
 namespace {
 
 using ::testing::HasSubstr;
@@ -178,4 +178,4 @@ TEST(RenderCli, Tree02FramesShowTheTreeAndBecomeAVideo) {
 }
 
 }  // namespace
-}  // namespace simtree
+}  // namespace simtree::viewer

@@ -7,7 +7,7 @@
 #include "simtree/core/error.h"
 #include "simtree/core/units.h"
 
-namespace simtree {
+namespace simtree::dynamics {
 namespace {
 
 // The exact state transition of q'' + 2 zeta w q' + w^2 q = 0 over dt, written with
@@ -127,4 +127,4 @@ double OscillatorEnergy(double modal_mass, double frequency_hz, double q, double
   return 0.5 * modal_mass * (v * v + w * w * q * q);
 }
 
-}  // namespace simtree
+}  // namespace simtree::dynamics

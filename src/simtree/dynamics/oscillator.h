@@ -16,7 +16,7 @@
 
 #include <string>
 
-namespace simtree {
+namespace simtree::dynamics {
 
 enum class Integrator { kExact, kSemiImplicitEuler, kExplicitEuler };
 
@@ -44,4 +44,4 @@ OscillatorStep MakeOscillatorStep(double frequency_hz, double damping_ratio, dou
 // Energy of one oscillator of modal mass m: kinetic 1/2 m v^2 plus elastic 1/2 m w^2 q^2.
 double OscillatorEnergy(double modal_mass, double frequency_hz, double q, double v);
 
-}  // namespace simtree
+}  // namespace simtree::dynamics

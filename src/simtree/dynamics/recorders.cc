@@ -9,7 +9,7 @@
 #include "simtree/core/error.h"
 #include "simtree/io/capture.h"
 
-namespace simtree {
+namespace simtree::dynamics {
 namespace {
 
 template <typename T>
@@ -302,4 +302,4 @@ void AnimationRecorder::Record(int frame, double time_s, const TreeDynamics& sim
 
 void AnimationRecorder::End() { WriteGltfAnimation(animation_, path_); }
 
-}  // namespace simtree
+}  // namespace simtree::dynamics

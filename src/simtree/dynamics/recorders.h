@@ -14,11 +14,11 @@
 #include "simtree/core/atomic_file.h"
 #include "simtree/core/tree.h"
 #include "simtree/core/tube_mesh.h"
-#include "simtree/dynamics/simulation.h"
+#include "simtree/dynamics/simulate.h"
 #include "simtree/io/gltf_animation.h"
 #include "simtree/io/trajectories.h"
 
-namespace simtree {
+namespace simtree::dynamics {
 
 inline constexpr char kNodeFramesMagic[9] = "SIMTNODE";
 inline constexpr uint32_t kNodeFramesVersion = 1;
@@ -104,4 +104,4 @@ class AnimationRecorder : public FrameRecorder {
   std::vector<int> joint_branch_, joint_node_;
 };
 
-}  // namespace simtree
+}  // namespace simtree::dynamics

@@ -8,7 +8,7 @@
 
 #include "simtree/core/error.h"
 
-namespace simtree {
+namespace simtree::dynamics {
 namespace {
 
 // Tangent of the branch polyline at arc length s.
@@ -94,4 +94,4 @@ Eigen::Vector3d DefaultPullDirection(const Tree& tree, int branch, double arc_le
   return d.norm() > 1e-6 ? d.normalized() : Eigen::Vector3d(tangent.unitOrthogonal());
 }
 
-}  // namespace simtree
+}  // namespace simtree::dynamics

@@ -10,7 +10,7 @@
 
 #include "simtree/core/tree.h"
 
-namespace simtree {
+namespace simtree::dynamics {
 
 struct Rope {
   enum class Mode { kForce, kDisplacement };
@@ -41,4 +41,4 @@ PullTarget ParsePullTarget(const std::string& text, const std::string& where = "
 // axis; world X as the last resort. Unit length.
 Eigen::Vector3d DefaultPullDirection(const Tree& tree, int branch, double arc_length);
 
-}  // namespace simtree
+}  // namespace simtree::dynamics

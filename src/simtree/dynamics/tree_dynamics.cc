@@ -16,9 +16,9 @@
 #include "simtree/core/error.h"
 #include "simtree/core/units.h"
 #include "simtree/core/validate.h"
-#include "simtree/dynamics/mode_shapes.h"
+#include "simtree/dynamics/detail/mode_shapes.h"
 
-namespace simtree {
+namespace simtree::dynamics {
 namespace {
 
 constexpr int kU = 0;  // bend_u
@@ -1157,4 +1157,4 @@ void TreeDynamics::NodeRotations(std::span<Eigen::Quaternionf> out) const {
   });
 }
 
-}  // namespace simtree
+}  // namespace simtree::dynamics

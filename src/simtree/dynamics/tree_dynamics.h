@@ -46,7 +46,7 @@
 #include "simtree/dynamics/rope.h"
 #include "simtree/dynamics/wind.h"
 
-namespace simtree {
+namespace simtree::dynamics {
 
 struct DynamicsOptions {
   Integrator integrator = Integrator::kExact;
@@ -174,4 +174,4 @@ class TreeDynamics {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace simtree
+}  // namespace simtree::dynamics

@@ -11,7 +11,7 @@
 #include "simtree/core/error.h"
 #include "simtree/core/units.h"
 
-namespace simtree {
+namespace simtree::dynamics {
 namespace {
 
 void Check(bool ok, const std::string& field, const std::string& message) {
@@ -168,4 +168,4 @@ Eigen::Vector3d WindField::Velocity(const Eigen::Vector3d& point) const {
   return u.cast<double>();
 }
 
-}  // namespace simtree
+}  // namespace simtree::dynamics

@@ -15,7 +15,7 @@
 
 #include <Eigen/Core>
 
-namespace simtree {
+namespace simtree::dynamics {
 
 struct WindOptions {
   bool enabled = false;
@@ -71,4 +71,4 @@ class WindField {
   std::vector<Eigen::Vector3f> grid_;                    // x fastest
 };
 
-}  // namespace simtree
+}  // namespace simtree::dynamics

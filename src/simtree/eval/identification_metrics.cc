@@ -8,7 +8,7 @@
 
 #include "simtree/core/statistics.h"
 
-namespace simtree {
+namespace simtree::eval {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -44,11 +44,11 @@ void Summarize(const std::vector<const ValueScore*>& values, ScoreSummary& summa
 
 }  // namespace
 
-LinkScores ScoreLinks(const MaterialsFile& materials, const ModalTruth& truth,
-                      std::optional<EstimatorKind> estimator) {
+LinkScores ScoreLinks(const identification::MaterialsFile& materials, const ModalTruth& truth,
+                      std::optional<identification::EstimatorKind> estimator) {
   LinkScores out;
   out.estimator = estimator ? ToString(*estimator) : materials.estimator;
-  for (const LinkMaterial& link : materials.links) {
+  for (const identification::LinkMaterial& link : materials.links) {
     const ModalTruth::Link* t = nullptr;
     for (const ModalTruth::Link& candidate : truth.links) {
       if (candidate.child == link.child && candidate.parent == link.parent) t = &candidate;
@@ -57,7 +57,7 @@ LinkScores ScoreLinks(const MaterialsFile& materials, const ModalTruth& truth,
       ++out.summary.no_truth;
       continue;
     }
-    const ModalEstimate* e = &link.value;
+    const identification::ModalEstimate* e = &link.value;
     if (estimator) {
       e = nullptr;
       for (const auto& [kind, value] : link.estimators) {
@@ -69,11 +69,11 @@ LinkScores ScoreLinks(const MaterialsFile& materials, const ModalTruth& truth,
     s.child = link.child;
     s.label = link.label;
     // A link without an estimator's entry: its own status says why (a missing marker), if any.
-    const bool why = link.value.status != EstimateStatus::kOk;
-    s.status = e ? e->status : (why ? link.value.status : EstimateStatus::kFailed);
+    const bool why = link.value.status != identification::EstimateStatus::kOk;
+    s.status = e ? e->status : (why ? link.value.status : identification::EstimateStatus::kFailed);
     s.message =
         e ? e->message : (why ? link.value.message : "the materials file holds no such estimator");
-    const bool ok = e && e->status == EstimateStatus::kOk;
+    const bool ok = e && e->status == identification::EstimateStatus::kOk;
     s.value = Score(t->frequency_hz, t->damping_ratio, ok ? e->frequency_hz : kNaN,
                     ok ? e->damping_ratio : kNaN);
     if (t->peaks.size() > 1 && t->peaks[0].strength > 0) {
@@ -141,4 +141,4 @@ std::string FormatLinkScores(const LinkScores& scores) {
   return out;
 }
 
-}  // namespace simtree
+}  // namespace simtree::eval

@@ -12,7 +12,7 @@
 #include "simtree/identification/materials_file.h"
 #include "simtree/io/ground_truth.h"
 
-namespace simtree {
+namespace simtree::eval {
 
 struct ValueScore {
   double truth_frequency_hz = 0.0, truth_damping = 0.0;
@@ -23,7 +23,7 @@ struct ValueScore {
 struct LinkScore {
   int parent = -1, child = 0;
   std::string label;
-  EstimateStatus status = EstimateStatus::kOk;
+  identification::EstimateStatus status = identification::EstimateStatus::kOk;
   std::string message;  // the estimator's note, or why there is no value
   ValueScore value;
   // How clear the truth's dominant mode is: the runner-up's spectral peak over the dominant's
@@ -52,8 +52,8 @@ struct LinkScores {
 
 // Links of `materials` against the truth's links (matched by parent and child marker ids), read
 // from `estimator`'s column (default: the file's chosen estimator).
-LinkScores ScoreLinks(const MaterialsFile& materials, const ModalTruth& truth,
-                      std::optional<EstimatorKind> estimator = std::nullopt);
+LinkScores ScoreLinks(const identification::MaterialsFile& materials, const ModalTruth& truth,
+                      std::optional<identification::EstimatorKind> estimator = std::nullopt);
 
 struct BranchScore {
   int branch = 0;
@@ -73,4 +73,4 @@ BranchScores ScoreBranches(const Tree& simulation_ready, const ModalTruth& truth
 std::string FormatLinkScores(const LinkScores& scores);
 std::string FormatSummary(const std::string& name, const ScoreSummary& summary);
 
-}  // namespace simtree
+}  // namespace simtree::eval

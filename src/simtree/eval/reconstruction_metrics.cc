@@ -7,9 +7,9 @@
 
 #include <fmt/format.h>
 
-#include "simtree/reconstruction/point_index.h"
+#include "simtree/reconstruction/detail/point_index.h"
 
-namespace simtree {
+namespace simtree::eval {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -48,7 +48,7 @@ class SkeletonSamples {
     }
     std::vector<Eigen::Vector3d> positions(samples_.size());
     for (size_t i = 0; i < samples_.size(); ++i) positions[i] = samples_[i].position;
-    index_ = std::make_unique<PointIndex>(positions);
+    index_ = std::make_unique<reconstruction::PointIndex>(positions);
   }
 
   const std::vector<Sample>& samples() const { return samples_; }
@@ -104,7 +104,7 @@ class SkeletonSamples {
  private:
   const Tree& tree_;
   std::vector<Sample> samples_;
-  std::unique_ptr<PointIndex> index_;
+  std::unique_ptr<reconstruction::PointIndex> index_;
   mutable std::vector<int> near_;
   mutable std::vector<double> d2_;
   mutable std::vector<std::pair<int, int>> segments_;
@@ -328,4 +328,4 @@ std::string FormatCloudFit(const CloudFitScores& s) {
       s.branches, levels, s.total_length_m);
 }
 
-}  // namespace simtree
+}  // namespace simtree::eval

@@ -31,7 +31,7 @@
 
 #include "simtree/core/tree.h"
 
-namespace simtree {
+namespace simtree::eval {
 
 struct TruthScoreOptions {
   double min_true_radius_m = 0.01;
@@ -95,4 +95,4 @@ std::vector<int> BranchCountsByLevel(const Tree& tree);
 std::string FormatTruthScores(const TruthScores& scores);
 std::string FormatCloudFit(const CloudFitScores& scores);
 
-}  // namespace simtree
+}  // namespace simtree::eval

@@ -6,7 +6,7 @@
 
 #include "simtree/core/error.h"
 
-namespace simtree {
+namespace simtree::eval {
 
 std::vector<Eigen::Vector3d> TreeSamplePoints(const Tree& tree, double spacing_m) {
   if (!(spacing_m > 0)) throw InputError("<memory>", "spacing", "expected a positive spacing");
@@ -73,4 +73,4 @@ double ViewAngleDeg(const Eigen::Isometry3d& world_from_a, const Eigen::Isometry
   return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / std::numbers::pi;
 }
 
-}  // namespace simtree
+}  // namespace simtree::eval

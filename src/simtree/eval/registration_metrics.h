@@ -11,7 +11,7 @@
 
 #include "simtree/core/tree.h"
 
-namespace simtree {
+namespace simtree::eval {
 
 // Points along every branch axis of the true tree (world frame), at most `spacing_m` apart.
 std::vector<Eigen::Vector3d> TreeSamplePoints(const Tree& tree, double spacing_m = 0.02);
@@ -50,4 +50,4 @@ PoseError ViewPoseError(const Eigen::Isometry3d& frame_from_view,
 // the pair's angle gap around the tree.
 double ViewAngleDeg(const Eigen::Isometry3d& world_from_a, const Eigen::Isometry3d& world_from_b);
 
-}  // namespace simtree
+}  // namespace simtree::eval

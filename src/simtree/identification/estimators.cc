@@ -7,7 +7,7 @@
 
 #include "simtree/core/units.h"
 
-namespace simtree {
+namespace simtree::identification {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -353,4 +353,4 @@ SignalEstimate EstimateModes(const SampledSignal& input, EstimatorKind estimator
   return out;
 }
 
-}  // namespace simtree
+}  // namespace simtree::identification

@@ -30,10 +30,10 @@
 
 #include <Eigen/Core>
 
-#include "simtree/identification/sampled_signal.h"
-#include "simtree/identification/spectrum.h"
+#include "simtree/identification/detail/sampled_signal.h"
+#include "simtree/identification/detail/spectrum.h"
 
-namespace simtree {
+namespace simtree::identification {
 
 enum class EstimatorKind { kHalfPowerFft, kInterpolatedSpectrum, kDampedSinusoidFit };
 
@@ -182,4 +182,4 @@ DampedSinusoidFit FitDampedSinusoids(const SampledSignal& signal, double min_hz,
 void ReadFittedModes(DampedSinusoidFit fit, int channels, double record_s, double min_hz,
                      double max_hz, const EstimatorOptions& options, SignalEstimate& out);
 
-}  // namespace simtree
+}  // namespace simtree::identification

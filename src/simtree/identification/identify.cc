@@ -9,7 +9,7 @@
 
 #include "simtree/core/error.h"
 
-namespace simtree {
+namespace simtree::identification {
 
 const SignalEstimate* LinkIdentification::Find(EstimatorKind kind) const {
   for (const SignalEstimate& e : estimates) {
@@ -264,4 +264,4 @@ std::string FormatLinkTable(const IdentificationResult& result) {
   return out;
 }
 
-}  // namespace simtree
+}  // namespace simtree::identification

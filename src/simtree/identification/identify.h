@@ -4,21 +4,30 @@
 // the chosen one and a Table IV-style summary.
 //
 //   trajectories ──► release ──► free-decay window ──► deflection per link ──► estimators
+//
+// Usage:
+//   const simtree::Trajectories tracks = simtree::ReadTrajectoriesCsv("tracks/trajectories.csv");
+//   const auto markers = simtree::ReadMarkersJson("scene/pull/markers.json");
+//   const simtree::identification::IdentificationResult result =
+//       simtree::identification::IdentifyMaterials(tracks, markers, {});
+//   simtree::identification::WriteMaterialsJson(
+//       simtree::identification::MaterialsFromIdentification(result, "trajectories.csv"),
+//       "materials.json");
 
 #include <limits>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "simtree/identification/deflection.h"
+#include "simtree/identification/detail/deflection.h"
+#include "simtree/identification/detail/joint_poles.h"
+#include "simtree/identification/detail/release.h"
+#include "simtree/identification/detail/track_outliers.h"
 #include "simtree/identification/estimators.h"
-#include "simtree/identification/joint_poles.h"
-#include "simtree/identification/release.h"
-#include "simtree/identification/track_outliers.h"
 #include "simtree/io/capture.h"
 #include "simtree/io/trajectories.h"
 
-namespace simtree {
+namespace simtree::identification {
 
 struct IdentifyOptions {
   EstimatorKind estimator = kDefaultEstimator;
@@ -118,4 +127,4 @@ std::string FormatRanges(const MaterialRanges& ranges, const std::string& name);
 // A per-link table (label, status, f, zeta with their standard deviations, and every estimator).
 std::string FormatLinkTable(const IdentificationResult& result);
 
-}  // namespace simtree
+}  // namespace simtree::identification

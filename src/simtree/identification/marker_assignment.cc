@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-namespace simtree {
+namespace simtree::identification {
 
 std::vector<Eigen::Vector3d> RestPositions(const Trajectories& t, double rest_fraction) {
   std::vector<Eigen::Vector3d> out;
@@ -115,4 +115,4 @@ std::vector<MarkerLink> LinkMarkersByTree(const Tree& tree,
   return out;
 }
 
-}  // namespace simtree
+}  // namespace simtree::identification

@@ -15,7 +15,7 @@
 #include "simtree/io/capture.h"
 #include "simtree/io/trajectories.h"
 
-namespace simtree {
+namespace simtree::identification {
 
 struct MarkerPlacement {
   int marker = 0;
@@ -39,4 +39,4 @@ std::vector<MarkerPlacement> PlaceMarkersOnTree(const Tree& tree, const Trajecto
 std::vector<MarkerLink> LinkMarkersByTree(const Tree& tree,
                                           const std::vector<MarkerPlacement>& placements);
 
-}  // namespace simtree
+}  // namespace simtree::identification

@@ -10,7 +10,7 @@
 #include "simtree/core/json_util.h"
 #include "simtree/core/tree_json.h"
 
-namespace simtree {
+namespace simtree::identification {
 namespace {
 
 using ojson = nlohmann::ordered_json;
@@ -336,4 +336,4 @@ void WriteMaterialsJson(const MaterialsFile& materials, const std::filesystem::p
   WriteFileAtomically(path, MaterialsToJson(materials).dump(1) + "\n");
 }
 
-}  // namespace simtree
+}  // namespace simtree::identification

@@ -16,7 +16,7 @@
 #include "simtree/core/tree.h"
 #include "simtree/identification/identify.h"
 
-namespace simtree {
+namespace simtree::identification {
 
 inline constexpr const char* kMaterialsFormat = "simtree.materials";
 inline constexpr int kMaterialsFormatVersion = 1;
@@ -72,4 +72,4 @@ MaterialsFile MaterialsFromJson(const nlohmann::json& doc, const std::string& so
 MaterialsFile ReadMaterialsJson(const std::filesystem::path& path);
 void WriteMaterialsJson(const MaterialsFile& materials, const std::filesystem::path& path);
 
-}  // namespace simtree
+}  // namespace simtree::identification

@@ -11,7 +11,7 @@
 #include "simtree/core/atomic_file.h"
 #include "simtree/core/error.h"
 
-namespace simtree {
+namespace simtree::identification {
 namespace {
 
 const cv::Scalar kBlack(30, 30, 30), kGrey(200, 200, 200), kWhite(255, 255, 255);
@@ -222,4 +222,4 @@ void WriteLinkPlot(const IdentificationResult& result, const LinkIdentification&
   WriteFileAtomically(path, std::string(png.begin(), png.end()));
 }
 
-}  // namespace simtree
+}  // namespace simtree::identification

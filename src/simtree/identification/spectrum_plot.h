@@ -7,7 +7,7 @@
 
 #include "simtree/identification/identify.h"
 
-namespace simtree {
+namespace simtree::identification {
 
 struct SpectrumPlotOptions {
   int width = 1100;
@@ -21,4 +21,4 @@ struct SpectrumPlotOptions {
 void WriteLinkPlot(const IdentificationResult& result, const LinkIdentification& link,
                    const std::filesystem::path& path, const SpectrumPlotOptions& options = {});
 
-}  // namespace simtree
+}  // namespace simtree::identification

@@ -10,12 +10,12 @@
 
 #include "simtree/core/error.h"
 #include "simtree/core/validate.h"
-#include "simtree/reconstruction/geodesic_samples.h"
-#include "simtree/reconstruction/point_index.h"
-#include "simtree/reconstruction/scan_graph.h"
-#include "simtree/reconstruction/voxel_grid.h"
+#include "simtree/reconstruction/detail/geodesic_samples.h"
+#include "simtree/reconstruction/detail/point_index.h"
+#include "simtree/reconstruction/detail/scan_graph.h"
+#include "simtree/reconstruction/detail/voxel_grid.h"
 
-namespace simtree {
+namespace simtree::reconstruction {
 namespace {
 
 class Stopwatch {
@@ -414,4 +414,4 @@ ReconstructionResult ReconstructTree(std::span<const Eigen::Vector3d> points,
   return result;
 }
 
-}  // namespace simtree
+}  // namespace simtree::reconstruction

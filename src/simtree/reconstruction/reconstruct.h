@@ -16,6 +16,12 @@
 // Every length the stages use is derived from the measured point spacing and roughness unless it
 // is set here (a value of 0 means "derive it"); ReconstructionResult::parameters reports the
 // values used. docs/reconstruction.md explains each choice and measures each improvement.
+//
+// Usage:
+//   const std::vector<Eigen::Vector3d> points = ...;  // the merged cloud, metres, Z up
+//   const simtree::reconstruction::ReconstructionResult result =
+//       simtree::reconstruction::ReconstructTree(points, "merged.ply", {});
+//   simtree::WriteTreeJson(result.tree, "static.json");
 
 #include <span>
 #include <string>
@@ -24,19 +30,19 @@
 #include <Eigen/Core>
 
 #include "simtree/core/tree.h"
-#include "simtree/reconstruction/allometric_radii.h"
-#include "simtree/reconstruction/branch_decomposition.h"
-#include "simtree/reconstruction/cloud_preparation.h"
-#include "simtree/reconstruction/cloud_scale.h"
-#include "simtree/reconstruction/ground_plane.h"
-#include "simtree/reconstruction/scene_cleanup.h"
-#include "simtree/reconstruction/skeleton.h"
-#include "simtree/reconstruction/skeleton_smoothing.h"
-#include "simtree/reconstruction/space_colonization.h"
-#include "simtree/reconstruction/trunk_cylinder.h"
-#include "simtree/reconstruction/twig_pruning.h"
+#include "simtree/reconstruction/detail/allometric_radii.h"
+#include "simtree/reconstruction/detail/branch_decomposition.h"
+#include "simtree/reconstruction/detail/cloud_preparation.h"
+#include "simtree/reconstruction/detail/cloud_scale.h"
+#include "simtree/reconstruction/detail/ground_plane.h"
+#include "simtree/reconstruction/detail/scene_cleanup.h"
+#include "simtree/reconstruction/detail/skeleton.h"
+#include "simtree/reconstruction/detail/skeleton_smoothing.h"
+#include "simtree/reconstruction/detail/space_colonization.h"
+#include "simtree/reconstruction/detail/trunk_cylinder.h"
+#include "simtree/reconstruction/detail/twig_pruning.h"
 
-namespace simtree {
+namespace simtree::reconstruction {
 
 // The lengths the stages run at. 0 in ReconstructionOptions means: derive from the cloud.
 struct ReconstructionScale {
@@ -124,4 +130,4 @@ ReconstructionResult ReconstructTree(std::span<const Eigen::Vector3d> points,
                                      const std::string& source,
                                      const ReconstructionOptions& options = {});
 
-}  // namespace simtree
+}  // namespace simtree::reconstruction

@@ -11,7 +11,7 @@
 #include "simtree/core/error.h"
 #include "simtree/io/mesh_io.h"
 
-namespace simtree {
+namespace simtree::reconstruction {
 namespace {
 
 const cv::Scalar kInk(30, 30, 30);
@@ -122,4 +122,4 @@ void WriteReconstructionPlot(const Tree& tree, std::span<const Eigen::Vector3d> 
   WriteFileAtomically(path, std::string(bytes.begin(), bytes.end()));
 }
 
-}  // namespace simtree
+}  // namespace simtree::reconstruction

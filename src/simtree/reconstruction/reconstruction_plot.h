@@ -12,7 +12,7 @@
 
 #include "simtree/core/tree.h"
 
-namespace simtree {
+namespace simtree::reconstruction {
 
 struct ReconstructionPlotOptions {
   int height = 1000;  // pixels; the width follows from the two views
@@ -27,4 +27,4 @@ void WriteReconstructionPlot(const Tree& tree, std::span<const Eigen::Vector3d> 
                              const std::filesystem::path& path,
                              const ReconstructionPlotOptions& options = {});
 
-}  // namespace simtree
+}  // namespace simtree::reconstruction

@@ -8,7 +8,7 @@
 #include <open3d/utility/Random.h>
 #include <Eigen/Eigenvalues>
 
-namespace simtree {
+namespace simtree::registration {
 namespace {
 
 namespace reg = open3d::pipelines::registration;
@@ -133,4 +133,4 @@ BaselineResult Open3dFpfhRansacIcp(const open3d::geometry::PointCloud& source_in
   return result;
 }
 
-}  // namespace simtree
+}  // namespace simtree::registration

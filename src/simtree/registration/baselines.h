@@ -10,7 +10,7 @@
 #include <open3d/geometry/PointCloud.h>
 #include <Eigen/Geometry>
 
-namespace simtree {
+namespace simtree::registration {
 
 struct BaselineResult {
   Eigen::Isometry3d target_from_source = Eigen::Isometry3d::Identity();
@@ -51,4 +51,4 @@ Eigen::Isometry3d Open3dIcp(const open3d::geometry::PointCloud& source,
                             const Eigen::Isometry3d& initial, const BaselineOptions& options,
                             double* fitness = nullptr);
 
-}  // namespace simtree
+}  // namespace simtree::registration

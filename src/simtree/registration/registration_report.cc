@@ -5,9 +5,9 @@
 #include <fmt/format.h>
 
 #include "simtree/io/ground_truth.h"
-#include "simtree/registration/cloud_picture.h"
+#include "simtree/registration/detail/cloud_picture.h"
 
-namespace simtree {
+namespace simtree::registration {
 namespace {
 
 // NaN and infinity are not JSON: they become null.
@@ -129,4 +129,4 @@ RgbImage BeforeAfterPicture(const std::vector<RegistrationView>& views,
   return DrawPanels({before_panel, after_panel}, options);
 }
 
-}  // namespace simtree
+}  // namespace simtree::registration

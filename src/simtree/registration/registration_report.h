@@ -9,9 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include "simtree/io/image_io.h"
-#include "simtree/registration/multiview.h"
+#include "simtree/registration/register.h"
 
-namespace simtree {
+namespace simtree::registration {
 
 inline constexpr const char* kRegistrationFormat = "simtree.registration";
 inline constexpr int kRegistrationFormatVersion = 1;
@@ -31,4 +31,4 @@ std::string PairsMarkdown(const MultiViewResult& result);
 RgbImage BeforeAfterPicture(const std::vector<RegistrationView>& views,
                             const MultiViewResult& result);
 
-}  // namespace simtree
+}  // namespace simtree::registration

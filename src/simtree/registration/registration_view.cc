@@ -7,10 +7,10 @@
 #include <fmt/format.h>
 
 #include "simtree/core/error.h"
-#include "simtree/registration/medial_projection.h"
-#include "simtree/scan/point_spacing.h"
+#include "simtree/preprocessing/point_spacing.h"
+#include "simtree/registration/detail/medial_projection.h"
 
-namespace simtree {
+namespace simtree::registration {
 namespace {
 
 using open3d::geometry::KDTreeSearchParamHybrid;
@@ -20,7 +20,7 @@ using open3d::geometry::PointCloud;
 // skeleton points (a skeleton has no outside: up is the one direction both views agree on).
 void ComputeFeatures(RegistrationView& view, bool skeleton,
                      const RegistrationViewOptions& options) {
-  view.coarse_spacing_m = MedianPointSpacing(view.coarse);
+  view.coarse_spacing_m = preprocessing::MedianPointSpacing(view.coarse);
   const double s = std::max(view.coarse_spacing_m, 1e-3);
   view.coarse.EstimateNormals(KDTreeSearchParamHybrid(options.feature_normal_factor * s, 30));
   if (skeleton) {
@@ -118,7 +118,8 @@ CoarseInput ParseCoarseInput(const std::string& name) {
                                name));
 }
 
-RegistrationView PrepareView(const std::string& name, const PreprocessResult& preprocessed,
+RegistrationView PrepareView(const std::string& name,
+                             const preprocessing::PreprocessResult& preprocessed,
                              const RegistrationViewOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   RegistrationView view;
@@ -132,7 +133,7 @@ RegistrationView PrepareView(const std::string& name, const PreprocessResult& pr
     view.failure = fmt::format("only {} tree points", cloud->points_.size());
     return view;
   }
-  view.spacing_m = MedianPointSpacing(*cloud);
+  view.spacing_m = preprocessing::MedianPointSpacing(*cloud);
   const KDTreeSearchParamHybrid normal_search(options.normal_radius_factor * view.spacing_m,
                                               options.normal_max_neighbors);
   cloud->EstimateCovariances(normal_search);
@@ -195,4 +196,4 @@ RegistrationView PrepareView(const std::string& name, const PreprocessResult& pr
   return view;
 }
 
-}  // namespace simtree
+}  // namespace simtree::registration

@@ -13,12 +13,12 @@
 #include <open3d/pipelines/registration/Feature.h>
 #include <Eigen/Core>
 
-#include "simtree/registration/l1_medial_skeleton.h"
-#include "simtree/registration/medial_projection.h"
-#include "simtree/registration/trunk.h"
-#include "simtree/scan/preprocess.h"
+#include "simtree/preprocessing/preprocess_view.h"
+#include "simtree/registration/detail/l1_medial_skeleton.h"
+#include "simtree/registration/detail/medial_projection.h"
+#include "simtree/registration/detail/trunk.h"
 
-namespace simtree {
+namespace simtree::registration {
 
 // What coarse registration aligns (paper Table I's four rows).
 enum class CoarseInput {
@@ -76,7 +76,7 @@ struct RegistrationView {
   std::shared_ptr<const open3d::geometry::KDTreeFlann> medial_tree;
   // Up in the camera frame: the ground's normal, else the trunk's axis, else the camera's -y.
   Eigen::Vector3d up = -Eigen::Vector3d::UnitY();
-  std::optional<GroundPlane> ground;
+  std::optional<preprocessing::GroundPlane> ground;
   double spacing_m = 0.0;
   std::optional<TrunkFit> trunk;
   std::optional<KeyRegion> key_region;
@@ -105,7 +105,8 @@ std::optional<Eigen::Vector3d> TrunkPointAtHeight(const RegistrationView& view, 
 
 // Prepares a preprocessed view (PreprocessView's cloud, up and ground). Never throws for a view
 // that merely lacks a trunk: `failure` says so and the view's pairs are flagged.
-RegistrationView PrepareView(const std::string& name, const PreprocessResult& preprocessed,
+RegistrationView PrepareView(const std::string& name,
+                             const preprocessing::PreprocessResult& preprocessed,
                              const RegistrationViewOptions& options = {});
 
-}  // namespace simtree
+}  // namespace simtree::registration

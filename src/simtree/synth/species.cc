@@ -11,7 +11,7 @@
 #include "simtree/core/error.h"
 #include "simtree/core/json_util.h"
 
-namespace simtree {
+namespace simtree::synth {
 namespace {
 
 constexpr const char* kSpeciesFormat = "simtree.species";
@@ -137,7 +137,7 @@ class RangeCheck {
     }
   }
   void Text(const char*, const std::string&) {}
-  void Phyllotaxis(const char*, simtree::Phyllotaxis) {}
+  void Phyllotaxis(const char*, synth::Phyllotaxis) {}
   template <typename F>
   void Group(const char* key, F&& f) {
     path_.Nest(path_.At(key), f);
@@ -169,7 +169,7 @@ class JsonWriter {
   void Number(const char* key, double value, double, double) { (*out_)[key] = value; }
   void Integer(const char* key, int value, int, int) { (*out_)[key] = value; }
   void Text(const char* key, const std::string& value) { (*out_)[key] = value; }
-  void Phyllotaxis(const char* key, simtree::Phyllotaxis value) { (*out_)[key] = ToString(value); }
+  void Phyllotaxis(const char* key, synth::Phyllotaxis value) { (*out_)[key] = ToString(value); }
   template <typename F>
   void Group(const char* key, F&& f) {
     nlohmann::ordered_json* saved = out_;
@@ -213,7 +213,7 @@ class JsonFieldReader {
   void Text(const char* key, std::string& value) {
     value = reader_.String(Take(key), path_.At(key));
   }
-  void Phyllotaxis(const char* key, simtree::Phyllotaxis& value) {
+  void Phyllotaxis(const char* key, synth::Phyllotaxis& value) {
     const std::string name = reader_.String(Take(key), path_.At(key));
     if (name == ToString(Phyllotaxis::kOpposite)) {
       value = Phyllotaxis::kOpposite;
@@ -597,4 +597,4 @@ void WriteSpeciesJson(const SpeciesParams& params, const std::filesystem::path& 
   WriteFileAtomically(path, SpeciesToJson(params).dump(1) + "\n");
 }
 
-}  // namespace simtree
+}  // namespace simtree::synth

@@ -37,10 +37,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "simtree/synth/fem_model.h"
-#include "simtree/synth/wood.h"
+#include "simtree/synth/detail/fem_model.h"
+#include "simtree/synth/detail/wood.h"
 
-namespace simtree {
+namespace simtree::synth {
 
 // How buds are arranged around an axis.
 enum class Phyllotaxis {
@@ -204,4 +204,4 @@ void WriteSpeciesJson(const SpeciesParams& params, const std::filesystem::path& 
 
 const char* ToString(Phyllotaxis phyllotaxis);
 
-}  // namespace simtree
+}  // namespace simtree::synth

@@ -9,7 +9,7 @@
 
 #include "simtree/core/error.h"
 
-namespace simtree {
+namespace simtree::tracking {
 namespace {
 
 void CheckOptions(const TrackerErrorOptions& o) {
@@ -92,4 +92,4 @@ Trajectories SimulateTrackerError(const Trajectories& truth, const TrackerErrorO
   return out;
 }
 
-}  // namespace simtree
+}  // namespace simtree::tracking

@@ -16,7 +16,7 @@
 #include "simtree/io/ground_truth.h"
 #include "simtree/io/trajectories.h"
 
-namespace simtree {
+namespace simtree::tracking {
 
 struct TrackerErrorOptions {
   // Root-mean-square 3D error of a tracked position (mm). The depth axis (camera z) gets
@@ -42,4 +42,4 @@ struct TrackerErrorOptions {
 Trajectories SimulateTrackerError(const Trajectories& truth, const TrackerErrorOptions& options,
                                   const std::vector<MarkerFrame2d>* visibility = nullptr);
 
-}  // namespace simtree
+}  // namespace simtree::tracking

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <array>
 
-namespace simtree {
+namespace simtree::viewer {
 
 Material DemoLevelMaterial(int level) {
   struct Row {
@@ -28,4 +28,4 @@ int FillMissingMaterials(Tree& tree) {
   return filled;
 }
 
-}  // namespace simtree
+}  // namespace simtree::viewer

@@ -5,7 +5,7 @@
 
 #include "simtree/core/tree.h"
 
-namespace simtree {
+namespace simtree::viewer {
 
 // Frequency (Hz), damping ratio and stiffness (N/m) of a level in the authors' tree01 file:
 // trunk 3 / 0.02 / 30000, then 1.6 / 0.02 / 5000, 1.2 / 0.01 / 3000, 1.0 / 0.03 / 1000 and
@@ -15,4 +15,4 @@ Material DemoLevelMaterial(int level);
 // Gives every branch without a material its level's DemoLevelMaterial; returns how many it set.
 int FillMissingMaterials(Tree& tree);
 
-}  // namespace simtree
+}  // namespace simtree::viewer

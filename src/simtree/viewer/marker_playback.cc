@@ -7,12 +7,12 @@
 #include "simtree/core/error.h"
 #include "simtree/dynamics/recorders.h"
 
-namespace simtree {
+namespace simtree::viewer {
 
 Trajectories ReadTracksInWorld(const std::filesystem::path& path,
                                const std::optional<Eigen::Isometry3d>& world_from_camera) {
   std::string text = ReadFile(path);
-  const std::string world_line = kWorldTrajectoriesFirstLine;
+  const std::string world_line = dynamics::kWorldTrajectoriesFirstLine;
   const bool world = text.rfind(world_line, 0) == 0;
   // The world-frame variant differs only in its first line: read it with the same checks.
   if (world) text.replace(0, world_line.size(), kTrajectoriesFirstLine);
@@ -46,7 +46,7 @@ std::optional<Eigen::Vector3d> TrackPositionAt(const Trajectories& tracks, int i
 }
 
 MarkerComparison CompareMarkers(const Trajectories& measured, const std::vector<Marker>& markers,
-                                const TreeDynamics& sim) {
+                                const dynamics::TreeDynamics& sim) {
   MarkerComparison out;
   double sum_sq = 0.0;
   for (const Marker& m : markers) {
@@ -66,4 +66,4 @@ MarkerComparison CompareMarkers(const Trajectories& measured, const std::vector<
   return out;
 }
 
-}  // namespace simtree
+}  // namespace simtree::viewer

@@ -14,7 +14,7 @@
 #include "simtree/dynamics/tree_dynamics.h"
 #include "simtree/io/trajectories.h"
 
-namespace simtree {
+namespace simtree::viewer {
 
 // Reads marker tracks and brings them into the world frame. A camera-frame file (what `track`
 // writes) needs `world_from_camera` (the pull camera's pose; InputError without it); a world-frame
@@ -43,6 +43,6 @@ struct MarkerComparison {
 // The simulated markers (each at its branch and arc length in `sim`) against the measured ones of
 // the same id at the simulation's time.
 MarkerComparison CompareMarkers(const Trajectories& measured, const std::vector<Marker>& markers,
-                                const TreeDynamics& sim);
+                                const dynamics::TreeDynamics& sim);
 
-}  // namespace simtree
+}  // namespace simtree::viewer

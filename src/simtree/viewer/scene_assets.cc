@@ -4,7 +4,7 @@
 
 #include "simtree/core/error.h"
 
-namespace simtree {
+namespace simtree::viewer {
 
 std::filesystem::path ResolveLeafFolder(const std::string& leaves,
                                         const std::filesystem::path& tree_path) {
@@ -34,4 +34,4 @@ SceneAssets LoadSceneAssets(const Tree& tree, const std::filesystem::path& tree_
   return assets;
 }
 
-}  // namespace simtree
+}  // namespace simtree::viewer

@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "simtree/core/tree.h"
-#include "simtree/viewer/foliage.h"
-#include "simtree/viewer/leaf_model.h"
+#include "simtree/viewer/detail/foliage.h"
+#include "simtree/viewer/detail/leaf_model.h"
 
-namespace simtree {
+namespace simtree::viewer {
 
 struct FoliageSource {
   // "auto": <tree file's folder>/../leaf_model/apple_leaf when it exists (the authors' data
@@ -38,4 +38,4 @@ std::filesystem::path ResolveLeafFolder(const std::string& leaves,
 SceneAssets LoadSceneAssets(const Tree& tree, const std::filesystem::path& tree_path,
                             const FoliageSource& source);
 
-}  // namespace simtree
+}  // namespace simtree::viewer

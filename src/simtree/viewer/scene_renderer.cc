@@ -10,10 +10,10 @@
 #include "simtree/core/error.h"
 #include "simtree/core/units.h"
 #include "simtree/io/mesh_io.h"
-#include "simtree/viewer/gl_objects.h"
-#include "simtree/viewer/shaders.h"
+#include "simtree/viewer/detail/gl_objects.h"
+#include "simtree/viewer/detail/shaders.h"
 
-namespace simtree {
+namespace simtree::viewer {
 namespace {
 
 struct BranchVertex {
@@ -396,7 +396,7 @@ void SceneRenderer::SetPose(std::span<const Eigen::Vector3f> positions,
   glBufferSubData(GL_TEXTURE_BUFFER, 0, bytes, m.node_data.data());
 }
 
-void SceneRenderer::SetPose(const TreeDynamics& sim) {
+void SceneRenderer::SetPose(const dynamics::TreeDynamics& sim) {
   impl_->rotations.resize(static_cast<size_t>(sim.node_count()));
   sim.NodeRotations(impl_->rotations);
   SetPose(sim.node_positions(), impl_->rotations);
@@ -509,4 +509,4 @@ RgbImage ReadPixels(int width, int height) {
   return image;
 }
 
-}  // namespace simtree
+}  // namespace simtree::viewer

@@ -16,12 +16,12 @@
 #include "simtree/core/tube_mesh.h"
 #include "simtree/dynamics/tree_dynamics.h"
 #include "simtree/io/image_io.h"
-#include "simtree/viewer/camera.h"
-#include "simtree/viewer/foliage.h"
-#include "simtree/viewer/leaf_model.h"
-#include "simtree/viewer/leaf_simplify.h"
+#include "simtree/viewer/detail/camera.h"
+#include "simtree/viewer/detail/foliage.h"
+#include "simtree/viewer/detail/leaf_model.h"
+#include "simtree/viewer/detail/leaf_simplify.h"
 
-namespace simtree {
+namespace simtree::viewer {
 
 enum class BranchColouring {
   kBark,    // the bark texture
@@ -61,7 +61,7 @@ class SceneRenderer {
   // The pose of every node (TreeDynamics order): uploaded once per frame.
   void SetPose(std::span<const Eigen::Vector3f> positions,
                std::span<const Eigen::Quaternionf> rotations);
-  void SetPose(const TreeDynamics& sim);
+  void SetPose(const dynamics::TreeDynamics& sim);
   // The rest pose.
   void SetRestPose();
 
@@ -87,4 +87,4 @@ class SceneRenderer {
 // The colour of the current read framebuffer, top row first (what a screenshot shows).
 RgbImage ReadPixels(int width, int height);
 
-}  // namespace simtree
+}  // namespace simtree::viewer

@@ -14,7 +14,7 @@
 
 extern char** environ;
 
-namespace simtree {
+namespace simtree::viewer {
 
 void EncodeVideo(const std::filesystem::path& frames_dir, const std::filesystem::path& output,
                  const VideoOptions& options) {
@@ -63,4 +63,4 @@ void EncodeVideo(const std::filesystem::path& frames_dir, const std::filesystem:
   std::filesystem::rename(partial, output);
 }
 
-}  // namespace simtree
+}  // namespace simtree::viewer

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-namespace simtree {
+namespace simtree::viewer {
 
 struct VideoOptions {
   double fps = 30.0;
@@ -18,4 +18,4 @@ struct VideoOptions {
 void EncodeVideo(const std::filesystem::path& frames_dir, const std::filesystem::path& output,
                  const VideoOptions& options = {});
 
-}  // namespace simtree
+}  // namespace simtree::viewer

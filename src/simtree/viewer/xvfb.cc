@@ -21,7 +21,7 @@
 
 extern char** environ;
 
-namespace simtree {
+namespace simtree::viewer {
 
 bool HasDisplay() {
   const char* display = std::getenv("DISPLAY");
@@ -100,4 +100,4 @@ ScopedXvfb::~ScopedXvfb() {
   }
 }
 
-}  // namespace simtree
+}  // namespace simtree::viewer

@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-namespace simtree {
+namespace simtree::viewer {
 
 class ScopedXvfb {
  public:
@@ -29,4 +29,4 @@ class ScopedXvfb {
 // True when DISPLAY names an X server that accepts connections.
 bool HasDisplay();
 
-}  // namespace simtree
+}  // namespace simtree::viewer

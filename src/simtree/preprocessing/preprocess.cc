@@ -1,0 +1,196 @@
+#include "simtree/preprocessing/preprocess.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "simtree/core/atomic_file.h"
+#include "simtree/core/error.h"
+#include "simtree/core/json_util.h"
+#include "simtree/core/progress.h"
+#include "simtree/io/point_cloud_io.h"
+
+namespace fs = std::filesystem;
+
+namespace simtree::preprocessing {
+namespace {
+
+nlohmann::ordered_json Vector(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
+}  // namespace
+
+std::vector<PreprocessedView> PreprocessCaptureViews(const Capture& capture,
+                                                     const PreprocessOptions& preprocess,
+                                                     const DepthToCloudOptions& depth) {
+  std::vector<PreprocessedView> views;
+  Progress progress("preprocess", static_cast<int64_t>(capture.views.size()), "views");
+  for (const ScanView& scan : capture.views) {
+    PreprocessedView view;
+    view.name = scan.name;
+    try {
+      const RgbdImage image = LoadScanView(scan);
+      const auto cloud = DepthToCloud(image, depth, scan.directory.string());
+      view.result = PreprocessView(cloud, preprocess, scan.directory.string());
+    } catch (const InputError& e) {
+      view.failure = e.what();
+      spdlog::warn("{}", e.what());
+    }
+    views.push_back(std::move(view));
+    progress.Advance();
+  }
+  return views;
+}
+
+std::vector<PreprocessedView> PreprocessCloudFiles(const std::vector<fs::path>& files,
+                                                   const Eigen::Vector3d& up,
+                                                   const PreprocessOptions& preprocess) {
+  std::vector<PreprocessedView> views;
+  for (const fs::path& file : files) {
+    PreprocessedView view;
+    view.name = file.stem().string();
+    try {
+      view.result = PreprocessView(ReadPointCloud(file), preprocess, file.string());
+      if (!view.result->ground) view.result->up = up.normalized();
+    } catch (const InputError& e) {
+      view.failure = e.what();
+      spdlog::warn("{}", e.what());
+    }
+    views.push_back(std::move(view));
+  }
+  return views;
+}
+
+std::vector<PreprocessedView> LoadViews(const fs::path& input, const PreprocessOptions& preprocess,
+                                        const DepthToCloudOptions& depth,
+                                        const Eigen::Vector3d& cloud_up) {
+  if (!fs::is_directory(input)) {
+    throw InputError(input.string(), "",
+                     "expected a folder: a capture (scans/), the output of `simtree preprocess` "
+                     "(preprocess.json) or point-cloud files");
+  }
+  std::vector<PreprocessedView> views;
+  if (fs::exists(input / "preprocess.json")) {
+    views = ReadPreprocessedViews(input);
+  } else if (fs::exists(input / "capture.json") || fs::is_directory(input / "scans")) {
+    views = PreprocessCaptureViews(OpenCapture(input), preprocess, depth);
+  } else {
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::directory_iterator(input)) {
+      std::string ext = entry.path().extension().string();
+      std::transform(ext.begin(), ext.end(), ext.begin(),
+                     [](unsigned char c) { return std::tolower(c); });
+      if (entry.is_regular_file() &&
+          (ext == ".ply" || ext == ".pcd" || ext == ".xyz" || ext == ".txt" || ext == ".pts")) {
+        files.push_back(entry.path());
+      }
+    }
+    std::sort(files.begin(), files.end());
+    views = PreprocessCloudFiles(files, cloud_up, preprocess);
+  }
+  if (views.empty()) {
+    throw InputError(input.string(), "",
+                     "expected views: scans/view_XX of a capture, preprocess.json, or point-cloud "
+                     "files; found none");
+  }
+  return views;
+}
+
+nlohmann::ordered_json PreprocessedViewsToJson(const std::vector<PreprocessedView>& views) {
+  nlohmann::ordered_json doc;
+  doc["format"] = kPreprocessFormat;
+  doc["version"] = kPreprocessFormatVersion;
+  doc["frame"] = "each view in its own camera frame (OpenCV: x right, y down, z forward), metres";
+  nlohmann::ordered_json list = nlohmann::ordered_json::array();
+  for (const PreprocessedView& view : views) {
+    nlohmann::ordered_json v;
+    v["name"] = view.name;
+    if (!view.result) {
+      v["cloud"] = nullptr;
+      v["failure"] = view.failure;
+      list.push_back(v);
+      continue;
+    }
+    const PreprocessResult& r = *view.result;
+    v["cloud"] = view.name + ".ply";
+    v["up"] = Vector(r.up);
+    if (r.ground) {
+      v["ground"] = {{"normal", Vector(r.ground->normal)},
+                     {"offset", r.ground->offset},
+                     {"noise_m", r.ground->noise_m},
+                     {"points", r.ground->points}};
+    } else {
+      v["ground"] = nullptr;
+    }
+    v["point_spacing_m"] = r.point_spacing_m;
+    v["voxel_size_m"] = r.voxel_size_m;
+    v["input_points"] = r.input_points;
+    v["ground_points"] = r.ground_points;
+    v["outlier_points"] = r.outlier_points;
+    v["downsampled_points"] = r.downsampled_points;
+    v["off_tree_points"] = r.off_tree_points;
+    v["tree_points"] = r.cloud.points_.size();
+    v["downsample_removed_share"] = r.DownsampleRemovedShare();
+    v["seconds"] = r.seconds;
+    list.push_back(v);
+  }
+  doc["views"] = list;
+  return doc;
+}
+
+void WritePreprocessedViews(const std::vector<PreprocessedView>& views, const fs::path& folder) {
+  for (const PreprocessedView& view : views) {
+    if (view.result) WritePointCloud(view.result->cloud, folder / (view.name + ".ply"));
+  }
+  WriteFileAtomically(folder / "preprocess.json", PreprocessedViewsToJson(views).dump(1) + "\n");
+}
+
+std::vector<PreprocessedView> ReadPreprocessedViews(const fs::path& folder) {
+  const fs::path path = folder / "preprocess.json";
+  const JsonReader json(path.string());
+  const nlohmann::json doc = ParseJson(ReadFile(path), path.string());
+  json.Object(doc, "");
+  if (json.String(json.Field(doc, "format", ""), "format") != kPreprocessFormat) {
+    json.Fail("format", fmt::format("expected \"{}\"", kPreprocessFormat));
+  }
+  if (json.Integer(json.Field(doc, "version", ""), "version") != kPreprocessFormatVersion) {
+    json.Fail("version", fmt::format("expected {}", kPreprocessFormatVersion));
+  }
+  const nlohmann::json& list = json.Array(json.Field(doc, "views", ""), "views");
+  std::vector<PreprocessedView> views;
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string at = Element("views", i);
+    const nlohmann::json& v = json.Object(list[i], at);
+    PreprocessedView view;
+    view.name = json.String(json.Field(v, "name", at), Member(at, "name"));
+    const nlohmann::json& cloud = json.Field(v, "cloud", at);
+    if (cloud.is_null()) {
+      view.failure = json.Has(v, "failure") ? json.String(v["failure"], Member(at, "failure"))
+                                            : std::string("failed in preprocessing");
+      views.push_back(std::move(view));
+      continue;
+    }
+    PreprocessResult r;
+    r.cloud = ReadPointCloud(folder / json.String(cloud, Member(at, "cloud")));
+    r.up = json.Vector3(json.Field(v, "up", at), Member(at, "up")).normalized();
+    const nlohmann::json& ground = json.Field(v, "ground", at);
+    if (!ground.is_null()) {
+      const std::string g_at = Member(at, "ground");
+      GroundPlane g;
+      g.normal = json.Vector3(json.Field(ground, "normal", g_at), Member(g_at, "normal"));
+      g.normal.normalize();
+      g.offset = json.Number(json.Field(ground, "offset", g_at), Member(g_at, "offset"));
+      g.noise_m = json.Number(json.Field(ground, "noise_m", g_at), Member(g_at, "noise_m"));
+      r.ground = g;
+    }
+    r.point_spacing_m =
+        json.Number(json.Field(v, "point_spacing_m", at), Member(at, "point_spacing_m"));
+    r.voxel_size_m = json.Number(json.Field(v, "voxel_size_m", at), Member(at, "voxel_size_m"));
+    view.result = std::move(r);
+    views.push_back(std::move(view));
+  }
+  return views;
+}
+
+}  // namespace simtree::preprocessing

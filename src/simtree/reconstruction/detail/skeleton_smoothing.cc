@@ -1,0 +1,27 @@
+#include "simtree/reconstruction/detail/skeleton_smoothing.h"
+
+#include <vector>
+
+namespace simtree::reconstruction {
+
+void SmoothSkeleton(Skeleton& skeleton, const SkeletonSmoothingOptions& options) {
+  if (options.iterations <= 0 || skeleton.size() < 3) return;
+  const std::vector<SkeletonChain> chains = SkeletonChains(skeleton);
+  std::vector<Eigen::Vector3d> next;
+  for (int it = 0; it < options.iterations; ++it) {
+    for (const SkeletonChain& chain : chains) {
+      const auto& ids = chain.nodes;
+      if (ids.size() < 3) continue;
+      next.resize(ids.size());
+      for (size_t k = 1; k + 1 < ids.size(); ++k) {
+        const Eigen::Vector3d& p = skeleton.nodes[ids[k]].position;
+        const Eigen::Vector3d mean =
+            0.5 * (skeleton.nodes[ids[k - 1]].position + skeleton.nodes[ids[k + 1]].position);
+        next[k] = p + options.weight * (mean - p);
+      }
+      for (size_t k = 1; k + 1 < ids.size(); ++k) skeleton.nodes[ids[k]].position = next[k];
+    }
+  }
+}
+
+}  // namespace simtree::reconstruction

@@ -1,0 +1,17 @@
+#pragma once
+// Smoothing of a grown skeleton: space colonization steps towards noisy attraction points, so its
+// chains zigzag by about the noise. A few rounds of Laplacian smoothing along each chain (forks,
+// tips and the root stay put) straighten them without moving the forks.
+
+#include "simtree/reconstruction/detail/skeleton.h"
+
+namespace simtree::reconstruction {
+
+struct SkeletonSmoothingOptions {
+  int iterations = 2;   // 0: off
+  double weight = 0.5;  // how far a node moves towards the mean of its two neighbours per round
+};
+
+void SmoothSkeleton(Skeleton& skeleton, const SkeletonSmoothingOptions& options);
+
+}  // namespace simtree::reconstruction

@@ -1,0 +1,594 @@
+#include "simtree/registration/detail/pairwise.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <numbers>
+#include <optional>
+#include <tuple>
+
+#include <fmt/format.h>
+
+namespace simtree::registration {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / std::numbers::pi;
+}
+
+// Distance between two lines (point, unit direction) measured at point `at` on the second.
+double LineOffsetAt(const Eigen::Vector3d& p1, const Eigen::Vector3d& d1,
+                    const Eigen::Vector3d& at) {
+  const Eigen::Vector3d v = at - p1;
+  return (v - v.dot(d1) * d1).norm();
+}
+
+double Spacing(const RegistrationView& source, const RegistrationView& target) {
+  return std::max(source.spacing_m, target.spacing_m);
+}
+
+// Moves a coarse result (keeping its rotation) so that the trunk axes meet and the grounds
+// coincide: the shift SAC-IA gets from skeleton points is off by what one-sided views bias, the
+// cylinder and the plane are not.
+Eigen::Isometry3d SnapToPriors(Eigen::Isometry3d t, const RegistrationView& source,
+                               const RegistrationView& target,
+                               const std::optional<SharedKeyRegion>& shared, bool use_ground) {
+  const bool cylinders =
+      source.trunk && target.trunk && source.trunk->cylinder && target.trunk->cylinder;
+  if (cylinders && shared) {
+    const Eigen::Vector3d d = target.trunk->cylinder->axis;
+    Eigen::Vector3d gap = shared->target.center - t * shared->source.center;
+    gap -= gap.dot(d) * d;  // across the axis only
+    t.translation() += gap;
+  }
+  if (use_ground && source.ground && target.ground) {
+    Eigen::Vector3d foot = source.trunk ? source.trunk->base : source.cloud->GetCenter();
+    foot -= source.ground->SignedDistance(foot) * source.ground->normal;
+    t.translation() -= target.ground->SignedDistance(t * foot) * target.ground->normal;
+  }
+  return t;
+}
+
+// The fine stage's ICP options, its distances in metres from the pair's point spacing.
+GatedIcpOptions FineIcpOptions(const RegistrationView& source, const RegistrationView& target,
+                               const PairOptions& options) {
+  GatedIcpOptions icp = options.icp;
+  if (!options.icp_distance_factors.empty()) {
+    icp.max_distances_m.clear();
+    for (double f : options.icp_distance_factors) {
+      icp.max_distances_m.push_back(f * Spacing(source, target));
+    }
+  }
+  return icp;
+}
+
+// A turn by `angle_deg` about the line through `pivot` along unit `axis`.
+Eigen::Isometry3d TurnAbout(const Eigen::Vector3d& axis, const Eigen::Vector3d& pivot,
+                            double angle_deg) {
+  Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
+  turn.linear() = Eigen::AngleAxisd(angle_deg * std::numbers::pi / 180.0, axis).toRotationMatrix();
+  turn.translation() = pivot - turn.linear() * pivot;
+  return turn;
+}
+
+// A turn about the target's trunk axis and a shift along it, applied after a result.
+struct TrunkMove {
+  double angle_deg = 0.0;
+  double shift_m = 0.0;
+};
+
+Eigen::Isometry3d MoveAboutTrunk(const RegistrationView& target, const TrunkMove& move) {
+  const Eigen::Vector3d axis = TrunkAxis(target).normalized();
+  Eigen::Isometry3d t = TurnAbout(axis, target.trunk->base, move.angle_deg);
+  t.translation() += move.shift_m * axis;
+  return t;
+}
+
+// The moves of `result` about the target's trunk axis worth refining: turns every
+// `turn_step_deg` around the circle, each at every shift of `shifts_m`, settled by a short ICP on
+// a sample of the source view (the fine stage's distances, a few iterations each) and scored by
+// its fitness at the last distance, as the full refinement is; best first, one per peak (no two
+// within a step and a half of each other or of the result, in turn and in shift). A bare
+// overlap count does not tell the turns apart: it needs a distance as wide as half a step moves
+// the crown (~13 cm), at which every turn scores alike.
+std::vector<TrunkMove> ScreenMoves(const RegistrationView& source, const RegistrationView& target,
+                                   const Eigen::Isometry3d& result,
+                                   const std::vector<double>& shifts_m, int wanted,
+                                   const PairOptions& options) {
+  std::vector<TrunkMove> chosen;
+  const double step = options.turn_step_deg;
+  if (wanted <= 0 || !(step > 0) || !target.trunk || !source.cloud ||
+      source.cloud->points_.empty() || shifts_m.empty()) {
+    return chosen;
+  }
+  GatedIcpOptions icp = FineIcpOptions(source, target, options);
+  icp.iterations_per_stage = options.turn_screen_iterations;
+  icp.max_source_points = options.turn_screen_points;
+  // The shifts' spacing: how close two shifts may be and still be one peak.
+  double shift_step = std::numeric_limits<double>::infinity();
+  for (size_t i = 1; i < shifts_m.size(); ++i) {
+    shift_step = std::min(shift_step, std::abs(shifts_m[i] - shifts_m[i - 1]));
+  }
+  std::vector<std::pair<double, TrunkMove>> scored;  // (fitness, move)
+  for (double shift : shifts_m) {
+    for (double angle = 0.0; angle < 360.0 - 0.5 * step; angle += step) {
+      if (angle == 0.0 && shift == 0.0) continue;  // the result itself
+      const TrunkMove move{angle, shift};
+      scored.emplace_back(GatedPointToPlaneIcp(*source.cloud, *target.cloud, *target.cloud_tree,
+                                               MoveAboutTrunk(target, move) * result, icp,
+                                               source.planarity.get(), target.planarity.get())
+                              .fitness,
+                          move);
+    }
+  }
+  // Best first; ties by the larger turn, then shift (a fixed order).
+  std::sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) {
+    return std::tuple(a.first, a.second.angle_deg, a.second.shift_m) >
+           std::tuple(b.first, b.second.angle_deg, b.second.shift_m);
+  });
+  auto apart = [&](const TrunkMove& a, const TrunkMove& b) {
+    const double d = std::fmod(std::abs(a.angle_deg - b.angle_deg), 360.0);
+    return std::min(d, 360.0 - d) > 1.5 * step ||
+           std::abs(a.shift_m - b.shift_m) > 1.5 * shift_step;
+  };
+  for (const auto& [share, move] : scored) {
+    if (static_cast<int>(chosen.size()) >= wanted) break;
+    bool far = apart(move, TrunkMove{});
+    for (const TrunkMove& c : chosen) far = far && apart(move, c);
+    if (far) chosen.push_back(move);
+  }
+  return chosen;
+}
+
+// The shifts along the trunk the turn screen tries: none, or every screen_shift_step_factor
+// point spacings up to screen_shift_share of the key region's radius either way.
+std::vector<double> ScreenShifts(const RegistrationView& source, const RegistrationView& target,
+                                 double key_radius_m, const PairOptions& options) {
+  std::vector<double> shifts = {0.0};
+  const double step = options.screen_shift_step_factor * Spacing(source, target);
+  const double reach = options.screen_shift_share * key_radius_m;
+  if (!(step > 0) || !(reach >= step)) return shifts;
+  for (int k = 1; k * step <= reach + 1e-9; ++k) {
+    shifts.push_back(k * step);
+    shifts.push_back(-k * step);
+  }
+  std::sort(shifts.begin(), shifts.end());
+  return shifts;
+}
+
+}  // namespace
+
+double CoarseOverlap(const open3d::geometry::PointCloud& source,
+                     const open3d::geometry::PointCloud& target,
+                     const Eigen::Isometry3d& target_from_source, double distance_m) {
+  if (source.points_.empty() || target.points_.empty()) return 0.0;
+  const open3d::geometry::KDTreeFlann tree(target);
+  return MeasureOverlap(source, target, tree, target_from_source, distance_m).share;
+}
+
+std::optional<SharedKeyRegion> SharedKeyRegions(const RegistrationView& source,
+                                                const RegistrationView& target) {
+  if (!source.trunk || !target.trunk || !source.key_region || !target.key_region) {
+    return std::nullopt;
+  }
+  const bool use_ground = source.ground && target.ground;
+  SharedKeyRegion shared;
+  shared.height_m = std::min(HeightOf(source, source.trunk->branch_point, use_ground),
+                             HeightOf(target, target.trunk->branch_point, use_ground));
+  const auto a = TrunkPointAtHeight(source, shared.height_m, use_ground);
+  const auto b = TrunkPointAtHeight(target, shared.height_m, use_ground);
+  if (!a || !b) return std::nullopt;
+  const double radius = std::max(source.key_region->radius_m, target.key_region->radius_m);
+  shared.source = KeyRegion{*a, radius};
+  shared.target = KeyRegion{*b, radius};
+  return shared;
+}
+
+CoarseSubset SelectCoarse(const RegistrationView& view, const KeyRegion* region) {
+  CoarseSubset subset;
+  std::vector<size_t> inside;
+  if (region) {
+    inside = PointsInside(view.coarse, *region);
+  } else {
+    inside.resize(view.coarse.points_.size());
+    for (size_t i = 0; i < inside.size(); ++i) inside[i] = i;
+  }
+  subset.points = *view.coarse.SelectByIndex(inside);
+  if (view.features) {
+    subset.features.Resize(static_cast<int>(view.features->Dimension()),
+                           static_cast<int>(inside.size()));
+    for (size_t k = 0; k < inside.size(); ++k) {
+      subset.features.data_.col(k) = view.features->data_.col(inside[k]);
+    }
+  }
+  return subset;
+}
+
+Overlap PaperMatch(const RegistrationView& source, const RegistrationView& target,
+                   const Eigen::Isometry3d& target_from_source, const PairOptions& options) {
+  return MeasureOverlap(*source.cloud, *target.cloud, *target.cloud_tree, target_from_source,
+                        options.match_distance_factor * Spacing(source, target));
+}
+
+void CheckPair(const RegistrationView& source, const RegistrationView& target,
+               const PairOptions& options, PairResult& result) {
+  const Eigen::Isometry3d& t = result.target_from_source;
+  std::vector<std::string> problems;
+  result.up_disagreement_deg = kNaN;
+  result.ground_offset_m = kNaN;
+  result.trunk_offset_m = kNaN;
+  if (source.ground && target.ground) {
+    result.up_disagreement_deg =
+        AngleDeg(t.linear() * source.ground->normal, target.ground->normal);
+    if (options.check_ground && result.up_disagreement_deg > options.max_up_disagreement_deg) {
+      problems.push_back(fmt::format("the grounds tilt {:.1f} deg apart (at most {:.1f})",
+                                     result.up_disagreement_deg, options.max_up_disagreement_deg));
+    }
+    // The source ground at its trunk's foot (or below its cloud's centre), in the target frame,
+    // against the target ground: near the tree both views see the same patch.
+    Eigen::Vector3d on_source =
+        source.trunk ? source.trunk->base
+                     : Eigen::Vector3d(-source.ground->offset * source.ground->normal);
+    on_source -= source.ground->SignedDistance(on_source) * source.ground->normal;
+    result.ground_offset_m = std::abs(target.ground->SignedDistance(t * on_source));
+    if (options.check_ground && result.ground_offset_m > options.max_ground_offset_m) {
+      problems.push_back(fmt::format("the grounds are {:.0f} mm apart (at most {:.0f})",
+                                     1e3 * result.ground_offset_m,
+                                     1e3 * options.max_ground_offset_m));
+    }
+  }
+  if (source.trunk && target.trunk && source.trunk->cylinder && target.trunk->cylinder) {
+    const TrunkCylinder& a = *source.trunk->cylinder;
+    const TrunkCylinder& b = *target.trunk->cylinder;
+    const double tilt = AngleDeg(t.linear() * a.axis, b.axis);
+    if (tilt > options.max_cylinder_tilt_deg) {
+      problems.push_back(fmt::format("the trunk cylinders tilt {:.1f} deg apart (at most {:.1f})",
+                                     tilt, options.max_cylinder_tilt_deg));
+    }
+    result.trunk_offset_m = LineOffsetAt(b.point, b.axis, t * a.point);
+    if (result.trunk_offset_m > options.max_cylinder_offset_m) {
+      problems.push_back(fmt::format("the trunk cylinders are {:.0f} mm apart (at most {:.0f})",
+                                     1e3 * result.trunk_offset_m,
+                                     1e3 * options.max_cylinder_offset_m));
+    }
+  } else if (source.trunk && target.trunk) {
+    const double tilt = AngleDeg(t.linear() * source.trunk->axis, target.trunk->axis);
+    if (tilt > options.max_trunk_tilt_deg) {
+      problems.push_back(fmt::format("the trunks tilt {:.1f} deg apart (at most {:.1f})", tilt,
+                                     options.max_trunk_tilt_deg));
+    }
+    result.trunk_offset_m =
+        LineOffsetAt(t * source.trunk->branch_point, t.linear() * source.trunk->axis,
+                     target.trunk->branch_point);
+    const double limit =
+        std::max(0.05, options.max_trunk_offset_factor *
+                           std::max(source.trunk->visible_width_m, target.trunk->visible_width_m));
+    if (result.trunk_offset_m > limit) {
+      problems.push_back(fmt::format("the trunks are {:.0f} mm apart (at most {:.0f})",
+                                     1e3 * result.trunk_offset_m, 1e3 * limit));
+    }
+  }
+  if (result.coarse_overlap < options.min_coarse_overlap) {
+    problems.push_back(fmt::format("only {:.0f}% of the {} matches (at least {:.0f}%)",
+                                   100 * result.coarse_overlap, ToString(source.coarse_input),
+                                   100 * options.min_coarse_overlap));
+  }
+  // The whole view, crown included: what tells a tree turned about its trunk from a right pair
+  // when the trunk and the key region's skeleton look alike from every side.
+  if (source.cloud && target.cloud && target.cloud_tree) {
+    const double last = options.icp_distance_factors.empty()
+                            ? options.icp.max_distances_m.back()
+                            : options.icp_distance_factors.back() * Spacing(source, target);
+    result.view_overlap =
+        MeasureOverlap(*source.cloud, *target.cloud, *target.cloud_tree, t, last).share;
+    if (result.view_overlap < options.min_fitness) {
+      problems.push_back(fmt::format("only {:.0f}% of points overlap (at least {:.0f}%)",
+                                     100 * result.view_overlap, 100 * options.min_fitness));
+    }
+  }
+  result.ok = problems.empty();
+  if (result.ok) {
+    result.status = "ok";
+  } else {
+    result.status = problems.front();
+    for (size_t i = 1; i < problems.size(); ++i) result.status += "; " + problems[i];
+  }
+}
+
+FineResult RefinePair(const RegistrationView& source, const RegistrationView& target,
+                      const Eigen::Isometry3d& initial, const PairOptions& options) {
+  FineResult result;
+  if (!source.cloud || !target.cloud) {
+    result.icp.target_from_source = initial;
+    return result;
+  }
+  GatedIcpOptions icp = FineIcpOptions(source, target, options);
+  // The trunk axes join the fine stage only when the coarse result already roughly agrees
+  // with them (a trunk cylinder fitted across a hidden fork would pull the pair askew).
+  IcpPriors priors;
+  if (options.trunk_axis_weight > 0 && source.trunk && target.trunk && source.trunk->cylinder &&
+      target.trunk->cylinder) {
+    const TrunkCylinder& a = *source.trunk->cylinder;
+    const TrunkCylinder& b = *target.trunk->cylinder;
+    const Eigen::Isometry3d& t = initial;
+    if (AngleDeg(t.linear() * a.axis, b.axis) <= options.max_trunk_guard_tilt_deg &&
+        LineOffsetAt(b.point, b.axis, t * a.point) <= options.max_trunk_guard_offset_m) {
+      priors.line = LineConstraint{a.point, a.axis, a.half_length_m,
+                                   b.point, b.axis, options.trunk_axis_weight};
+      result.trunk_constraint = true;
+    }
+  }
+  // The ground likewise, guarded the same way (the views may see different patches of an
+  // uneven ground).
+  if (options.ground_weight > 0 && source.ground && target.ground) {
+    const Eigen::Isometry3d& t = initial;
+    const preprocessing::GroundPlane& a = *source.ground;
+    const preprocessing::GroundPlane& b = *target.ground;
+    // Three points on the source ground around the foot of the trunk (or of the view).
+    Eigen::Vector3d foot = source.trunk ? source.trunk->base : source.cloud->GetCenter();
+    foot -= a.SignedDistance(foot) * a.normal;
+    const Eigen::Vector3d e1 = a.normal.unitOrthogonal();
+    const Eigen::Vector3d e2 = a.normal.cross(e1);
+    const double reach = options.ground_reach_m;
+    PlaneConstraint plane{{foot + reach * e1, foot - 0.5 * reach * e1 + 0.87 * reach * e2,
+                           foot - 0.5 * reach * e1 - 0.87 * reach * e2},
+                          b.normal,
+                          b.offset,
+                          options.ground_weight};
+    bool agrees = AngleDeg(t.linear() * a.normal, b.normal) <= options.max_ground_guard_tilt_deg;
+    for (const auto& p : plane.source_points) {
+      agrees = agrees && std::abs(b.SignedDistance(t * p)) <= options.max_ground_guard_offset_m;
+    }
+    if (agrees) {
+      priors.plane = plane;
+      result.ground_constraint = true;
+    }
+  }
+  result.icp = GatedPointToPlaneIcp(*source.cloud, *target.cloud, *target.cloud_tree, initial, icp,
+                                    source.planarity.get(), target.planarity.get(), priors);
+  if (!options.medial_distance_factors.empty() && source.medial && target.medial &&
+      target.medial_tree) {
+    MedialShiftOptions medial = options.medial;
+    medial.max_distances_m.clear();
+    for (double f : options.medial_distance_factors) {
+      medial.max_distances_m.push_back(f * Spacing(source, target));
+    }
+    const MedialShiftResult shifted = AlignMedialAxes(
+        *source.medial, *target.medial, *target.medial_tree, result.icp.target_from_source, medial);
+    result.icp.target_from_source = shifted.target_from_source;
+    result.medial_shift = shifted.shift;
+  }
+  return result;
+}
+
+namespace {
+
+FineResult AverageWithReverseOnce(const RegistrationView& source, const RegistrationView& target,
+                                  const FineResult& forward, const PairOptions& options,
+                                  bool may_restart) {
+  if (!source.cloud || !target.cloud || !source.cloud_tree || !target.cloud_tree ||
+      source.cloud->points_.empty()) {
+    return forward;
+  }
+  const Eigen::Isometry3d f = forward.icp.target_from_source;
+  const Eigen::Isometry3d b =
+      RefinePair(target, source, f.inverse(), options).icp.target_from_source.inverse();
+  const double last = FineIcpOptions(source, target, options).max_distances_m.back();
+  auto measured = [&](const Eigen::Isometry3d& t) {
+    FineResult r = forward;
+    r.icp.target_from_source = t;
+    const Overlap overlap =
+        MeasureOverlap(*source.cloud, *target.cloud, *target.cloud_tree, t, last);
+    r.icp.fitness = overlap.share;
+    r.icp.rmse_m = overlap.rmse_m;
+    r.icp.correspondences = overlap.matched;
+    return r;
+  };
+  // Two directions that settled in different places (one of them in a wrong basin) are not
+  // averaged: the one whose view overlaps more is kept, and when that is the reverse, the
+  // forward direction starts again from it.
+  double squared = 0.0;
+  for (const Eigen::Vector3d& p : source.cloud->points_) squared += (f * p - b * p).squaredNorm();
+  const double apart = std::sqrt(squared / static_cast<double>(source.cloud->points_.size()));
+  if (apart > options.max_reverse_disagreement_factor * Spacing(source, target)) {
+    FineResult one = measured(f), other = measured(b);
+    one.reverse_gap_m = other.reverse_gap_m = apart;
+    if (other.icp.fitness <= one.icp.fitness) return one;
+    if (!may_restart) return other;
+    FineResult again = RefinePair(source, target, b, options);
+    return AverageWithReverseOnce(source, target, again, options, false);
+  }
+  const Eigen::Quaterniond qf(f.linear()), qb(b.linear());
+  Eigen::Isometry3d mean = Eigen::Isometry3d::Identity();
+  mean.linear() = qf.slerp(0.5, qb).toRotationMatrix();
+  // Halfway between where the two put the source's points.
+  const Eigen::Vector3d centre = source.cloud->GetCenter();
+  mean.translation() = 0.5 * (f * centre + b * centre) - mean.linear() * centre;
+  FineResult result = measured(mean);
+  result.reverse_gap_m = apart;
+  return result;
+}
+
+}  // namespace
+
+FineResult AverageWithReverse(const RegistrationView& source, const RegistrationView& target,
+                              const FineResult& forward, const PairOptions& options) {
+  return AverageWithReverseOnce(source, target, forward, options, true);
+}
+
+TurnedFineResult RefineWithTurns(const RegistrationView& source, const RegistrationView& target,
+                                 const Eigen::Isometry3d& initial, const PairOptions& options,
+                                 const std::vector<double>& shifts_m, int refinements) {
+  TurnedFineResult result;
+  result.fine = RefinePair(source, target, initial, options);
+  if (!target.trunk) return result;
+  const Eigen::Isometry3d found = result.fine.icp.target_from_source;
+  result.screened = result.fine.icp.fitness < options.screen_below_overlap;
+  const int wanted =
+      result.screened ? (refinements >= 0 ? refinements : options.turned_refinements) : 0;
+  for (const TrunkMove& move : ScreenMoves(source, target, found, shifts_m, wanted, options)) {
+    FineResult moved = RefinePair(source, target, MoveAboutTrunk(target, move) * found, options);
+    if (moved.icp.fitness > result.fine.icp.fitness) {
+      result.fine = std::move(moved);
+      result.turned_deg = move.angle_deg;
+      result.shifted_m = move.shift_m;
+    }
+  }
+  if (options.symmetric_fine)
+    result.fine = AverageWithReverse(source, target, result.fine, options);
+  return result;
+}
+
+namespace {
+
+PairResult RegisterPairOnce(const RegistrationView& source, const RegistrationView& target,
+                            const PairOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  PairResult result;
+  result.source = source.name;
+  result.target = target.name;
+  result.own_key_regions = options.own_key_regions;
+  for (const RegistrationView* view : {&source, &target}) {
+    if (!view->CanRegister()) {
+      result.status = fmt::format("{}: {}", view->name, view->failure);
+      return result;
+    }
+  }
+
+  // What coarse registration aligns: the coarse points inside the pair's key regions, or all.
+  std::optional<SharedKeyRegion> shared;
+  if (UsesKeyRegion(source.coarse_input) && options.own_key_regions) {
+    if (source.key_region && target.key_region) {
+      // One radius, as SharedKeyRegions takes: the spheres hold the same share of the tree.
+      const double radius = std::max(source.key_region->radius_m, target.key_region->radius_m);
+      shared = SharedKeyRegion{KeyRegion{source.key_region->center, radius},
+                               KeyRegion{target.key_region->center, radius}, kNaN};
+    }
+    if (!shared) {
+      result.status = "no key region in both views";
+      return result;
+    }
+  } else if (UsesKeyRegion(source.coarse_input)) {
+    shared = SharedKeyRegions(source, target);
+    if (!shared) {
+      result.status = "no key region shared by both views (a trunk axis lies flat)";
+      return result;
+    }
+  }
+  const CoarseSubset source_coarse = SelectCoarse(source, shared ? &shared->source : nullptr);
+  const CoarseSubset target_coarse = SelectCoarse(target, shared ? &shared->target : nullptr);
+
+  SacIaPrior prior;
+  if (options.up_prior) {
+    // One physical direction seen from both views: the trunk's axis (or, when asked, the
+    // ground's normal when both see the ground).
+    if (options.ground_as_up && source.ground && target.ground) {
+      prior.source_up = source.ground->normal;
+      prior.target_up = target.ground->normal;
+    } else if (source.trunk && target.trunk) {
+      prior.source_up = TrunkAxis(source);
+      prior.target_up = TrunkAxis(target);
+    }
+  }
+  if (options.center_prior && shared) {
+    prior.source_center = shared->source.center;
+    prior.target_center = shared->target.center;
+    prior.max_center_offset_m = options.max_center_offset_share * shared->source.radius_m;
+  }
+  result.coarse = SampleConsensusInitialAlignment(source_coarse.points, source_coarse.features,
+                                                  target_coarse.points, target_coarse.features,
+                                                  prior, options.sac_ia);
+  if (!result.coarse.found) {
+    result.status = "coarse registration found no consistent correspondences";
+    result.seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+  }
+  if (options.snap_to_priors) {
+    result.coarse.target_from_source = SnapToPriors(result.coarse.target_from_source, source,
+                                                    target, shared, options.ground_as_up);
+  }
+  result.target_from_source = result.coarse.target_from_source;
+  if (options.run_icp) {
+    const TurnedFineResult turned = RefineWithTurns(
+        source, target, result.target_from_source, options,
+        ScreenShifts(source, target, shared ? shared->source.radius_m : 0.0, options),
+        options.screen_shift_share > 0 ? options.shifted_refinements : -1);
+    const FineResult& fine = turned.fine;
+    result.turned_deg = turned.turned_deg;
+    result.shifted_m = turned.shifted_m;
+    result.medial_shift_m = fine.medial_shift.norm();
+    result.reverse_gap_m = fine.reverse_gap_m;
+    result.fine = fine.icp;
+    result.trunk_constraint = fine.trunk_constraint;
+    result.ground_constraint = fine.ground_constraint;
+    result.target_from_source = fine.icp.target_from_source;
+  }
+  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.coarse_overlap =
+      CoarseOverlap(source_coarse.points, target_coarse.points, result.target_from_source,
+                    options.sac_ia.inlier_distance_m);
+  const Overlap match = PaperMatch(source, target, result.target_from_source, options);
+  result.match_rate = match.share;
+  result.rmse_m = match.rmse_m;
+  CheckPair(source, target, options, result);
+  return result;
+}
+
+// Keeps whichever of `result` and `retried` (found by `attempt`) overlaps more, charged with the
+// time of both.
+void KeepBetterOverlap(PairResult retried, const char* attempt, PairResult* result) {
+  retried.seconds += result->seconds;
+  retried.attempt = attempt;
+  if (retried.fine.fitness > result->fine.fitness) {
+    *result = std::move(retried);
+  } else {
+    result->seconds = retried.seconds;
+  }
+}
+
+}  // namespace
+
+PairResult RegisterPair(const RegistrationView& source, const RegistrationView& target,
+                        const PairOptions& options) {
+  PairResult result = RegisterPairOnce(source, target, options);
+  // Key regions placed at different physical points (one view's ground or trunk base seen far
+  // higher than the other's) make SAC-IA align different parts of the tree; the other choice
+  // of key regions is tried before the priors are given up.
+  if (options.retry_other_key_regions && UsesKeyRegion(source.coarse_input) &&
+      result.fine.fitness < options.min_fitness) {
+    PairOptions other = options;
+    other.own_key_regions = !options.own_key_regions;
+    KeepBetterOverlap(RegisterPairOnce(source, target, other), "other key regions", &result);
+  }
+  // Both forks may be other branchings (a view that sees one arm of the first fork hidden behind
+  // the other finds the next one up): SAC-IA then aligns the two forks, the source lands a
+  // fork's spacing too high or low, and no turn mends it. The screen is run once more over
+  // shifts along the trunk too, with the key regions that overlapped best.
+  if (options.retry_with_shifts && options.screen_shift_share <= 0 && options.run_icp &&
+      result.fine.fitness < options.min_fitness) {
+    PairOptions shifted = options;
+    shifted.screen_shift_share = options.retry_shift_share;
+    shifted.own_key_regions = result.own_key_regions;
+    KeepBetterOverlap(RegisterPairOnce(source, target, shifted), "shifts", &result);
+  }
+  // A trunk found wrong in one view (a stem beside it, a fork taken for the trunk) misleads the
+  // up and centre priors and the snap in every turn; when the result overlaps too little to be
+  // trusted, the pair is registered once more without them and the better overlap kept.
+  const bool priors = options.up_prior || options.center_prior || options.snap_to_priors;
+  if (options.retry_without_priors && priors && result.fine.fitness < options.min_fitness) {
+    PairOptions plain = options;
+    plain.up_prior = plain.center_prior = plain.snap_to_priors = false;
+    plain.own_key_regions = result.own_key_regions;
+    plain.min_fitness = std::max(options.min_fitness, options.min_fitness_without_priors);
+    KeepBetterOverlap(RegisterPairOnce(source, target, plain), "without priors", &result);
+    result.retried_without_priors = true;
+  }
+  return result;
+}
+
+}  // namespace simtree::registration

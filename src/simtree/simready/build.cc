@@ -1,0 +1,190 @@
+#include "simtree/simready/build.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "simtree/core/error.h"
+#include "simtree/core/frames.h"
+#include "simtree/core/statistics.h"
+#include "simtree/core/units.h"
+#include "simtree/core/validate.h"
+
+namespace simtree::simready {
+double CantileverModeShape(double xi) {
+  // beta L of the first mode: the smallest root of 1 + cos(x) cosh(x) = 0.
+  constexpr double kBeta = 1.8751040687119611;
+  static const double sigma =
+      (std::cosh(kBeta) + std::cos(kBeta)) / (std::sinh(kBeta) + std::sin(kBeta));
+  auto raw = [](double x) {
+    const double b = kBeta * x;
+    return std::cosh(b) - std::cos(b) - sigma * (std::sinh(b) - std::sin(b));
+  };
+  static const double tip = raw(1.0);
+  return raw(std::clamp(xi, 0.0, 1.0)) / tip;
+}
+
+std::vector<double> SubtreeMasses(const Tree& tree, double density_kg_m3) {
+  std::vector<double> mass(tree.size(), 0.0);
+  // Parents come before children, so one backward pass adds every sub-tree into its parent.
+  for (int b = tree.size() - 1; b >= 0; --b) {
+    mass[b] += density_kg_m3 * tree.branches[b].Volume();
+    if (tree.branches[b].parent >= 0) mass[tree.branches[b].parent] += mass[b];
+  }
+  return mass;
+}
+
+double BranchModalMass(const Tree& tree, int id, double density_kg_m3,
+                       const std::vector<double>& subtree_mass) {
+  const Branch& branch = tree.branches[id];
+  const std::vector<double> s = branch.ArcLengths();
+  const double length = s.back();
+  if (!(length > 0)) return 0.0;
+  // 3-point Gauss-Legendre on each frustum: r is linear along it, so mu phi^2 is smooth.
+  static const double kNodes[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)};
+  static const double kWeights[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  double mass = 0.0;
+  for (size_t i = 0; i + 1 < branch.nodes.size(); ++i) {
+    const double half = 0.5 * (s[i + 1] - s[i]);
+    for (int q = 0; q < 3; ++q) {
+      const double a = 0.5 * (1 + kNodes[q]);
+      const double r = (1 - a) * branch.nodes[i].radius + a * branch.nodes[i + 1].radius;
+      const double phi = CantileverModeShape((s[i] + a * (s[i + 1] - s[i])) / length);
+      mass += kWeights[q] * half * density_kg_m3 * kPi * r * r * phi * phi;
+    }
+  }
+  if (!subtree_mass.empty()) {
+    for (const Branch& child : tree.branches) {
+      if (child.parent != id) continue;
+      const double phi = CantileverModeShape(s[child.parent_node] / length);
+      mass += subtree_mass[child.id] * phi * phi;
+    }
+  }
+  return mass;
+}
+
+Tree RenumberDepthFirst(const Tree& tree, std::vector<int>* new_id_out) {
+  const std::vector<int> order = tree.DepthFirstOrder();
+  std::vector<int> new_id(tree.size(), -1);
+  for (size_t i = 0; i < order.size(); ++i) new_id[order[i]] = static_cast<int>(i);
+  Tree out;
+  out.metadata = tree.metadata;
+  for (int old : order) {
+    Branch b = tree.branches[old];
+    b.id = new_id[old];
+    b.parent = b.parent < 0 ? -1 : new_id[b.parent];
+    out.branches.push_back(std::move(b));
+  }
+  out.markers = tree.markers;
+  for (Marker& m : out.markers) m.branch = new_id[m.branch];
+  if (new_id_out) *new_id_out = std::move(new_id);
+  return out;
+}
+
+Tree BuildSimulationReadyTree(const Tree& static_tree,
+                              const identification::MaterialsFile& materials,
+                              const BuildOptions& options, BuildReport* report_out) {
+  BuildReport report;
+  if (static_tree.empty()) throw InputError("tree", "", "the static tree has no branches");
+  if (!(options.wood_density_kg_m3 > 0)) {
+    throw InputError("options", "wood density",
+                     fmt::format("expected > 0 kg/m^3, got {}", options.wood_density_kg_m3));
+  }
+  Tree tree = static_tree;
+  AssignLevels(tree);
+  ComputeFrames(tree);
+
+  // Which branch each measured link belongs to: its own branch id, or the static tree's marker of
+  // the same id.
+  identification::MaterialsFile m = materials;
+  if (!m.links.empty()) {
+    std::vector<int> marker_branch;
+    for (const Marker& marker : tree.markers) {
+      if (marker.id < 0) continue;
+      if (marker.id >= static_cast<int>(marker_branch.size()))
+        marker_branch.resize(marker.id + 1, -1);
+      marker_branch[marker.id] = marker.branch;
+    }
+    identification::AssignBranchMaterials(m, marker_branch);
+  }
+  std::vector<bool> measured(tree.size(), false);
+  std::vector<BranchSample> samples;
+  std::vector<double> ratio_f[3], ratio_z[3];
+  for (size_t i = 0; i < m.branches.size(); ++i) {
+    const identification::BranchMaterial& b = m.branches[i];
+    if (b.branch < 0 || b.branch >= tree.size()) {
+      throw InputError("materials", fmt::format("branches[{}].branch", i),
+                       fmt::format("branch {} is not in the tree (it has {} branches: is this "
+                                   "the static tree the markers were placed on?)",
+                                   b.branch, tree.size()));
+    }
+    Material material;
+    material.modes = b.modes;
+    material.source = MaterialSource::kMeasured;
+    tree.branches[b.branch].material = material;
+    measured[b.branch] = true;
+    // The twist mode carries the link's dominant value (a marker centre cannot see twist).
+    const Mode& dominant = b.modes[2];
+    samples.push_back({b.branch, dominant.frequency_hz, dominant.damping_ratio});
+    for (int k = 0; k < 3; ++k) {
+      ratio_f[k].push_back(b.modes[k].frequency_hz / dominant.frequency_hz);
+      ratio_z[k].push_back(b.modes[k].damping_ratio / dominant.damping_ratio);
+    }
+  }
+  if (samples.empty()) {
+    int with_value = 0;
+    for (const identification::LinkMaterial& l : m.links)
+      with_value += l.value.status == identification::EstimateStatus::kOk;
+    throw InputError(
+        "materials", "",
+        with_value == 0
+            ? "no link has a measured value: nothing to build from (see the links' status)"
+            : fmt::format("{} links are measured but none is on a known branch: give markers a "
+                          "\"branch\" in markers.json, or use a static tree whose markers have "
+                          "the same ids",
+                          with_value));
+  }
+  report.measured = static_cast<int>(samples.size());
+  report.interpolation = FitInterpolationModel(tree, samples, options.interpolation);
+
+  // Unmeasured branches: the interpolated dominant value, spread over the three modes by the
+  // measured branches' median ratios between modes.
+  double mode_f[3], mode_z[3];
+  for (int k = 0; k < 3; ++k) {
+    mode_f[k] = Median(ratio_f[k]);
+    mode_z[k] = Median(ratio_z[k]);
+  }
+  for (Branch& b : tree.branches) {
+    if (measured[b.id]) continue;
+    const double f = report.interpolation.Frequency(tree, b.id);
+    const double z = report.interpolation.Damping(b.level);
+    Material material;
+    for (int k = 0; k < 3; ++k) {
+      material.modes[k].frequency_hz = f * mode_f[k];
+      material.modes[k].damping_ratio = std::min(0.99, z * mode_z[k]);
+    }
+    material.source = MaterialSource::kInterpolated;
+    b.material = material;
+    ++report.interpolated;
+  }
+
+  const std::vector<double> subtree = SubtreeMasses(tree, options.wood_density_kg_m3);
+  for (int b = 0; b < tree.size(); ++b) {
+    if (tree.branches[b].parent < 0) report.total_mass_kg = subtree[b];
+    Material& material = *tree.branches[b].material;
+    material.mass_kg =
+        BranchModalMass(tree, b, options.wood_density_kg_m3,
+                        options.include_subtree_mass ? subtree : std::vector<double>{});
+    material.stiffness = ModalStiffness(material.mass_kg, material.modes[0].frequency_hz);
+  }
+  if (options.renumber_depth_first) tree = RenumberDepthFirst(tree);
+  ValidationOptions validation;
+  validation.require_materials = true;
+  Validate(tree, "simulation-ready tree", validation);
+  if (report_out) *report_out = std::move(report);
+  return tree;
+}
+
+}  // namespace simtree::simready

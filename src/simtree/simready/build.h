@@ -1,0 +1,75 @@
+#pragma once
+// The simulation-ready tree (paper III-D): a static tree plus identified materials in, every
+// branch with three modes, a modal mass, a stiffness and its frame out.
+//
+//  - Measured branches take their modes from materials.json; the others are interpolated
+//    (interpolation.h) and marked so; nothing is measured at all -> an error, not a default.
+//  - Mass: core's Material::mass_kg is the modal mass m of paper Eq. 6 for modes normalised to a
+//    unit tip deflection (a static tip force F bends the branch by F / k, k = 4 m pi^2 f^2). For a
+//    cantilever whose first mode shape is phi (phi(tip) = 1) the modal mass is
+//        m = integral_0^L mu(s) phi(s/L)^2 ds  +  sum over children c of M_c phi(s_c/L)^2,
+//    with mu = rho pi r(s)^2 the wood's mass per length along the branch and M_c the whole mass of
+//    the sub-tree that rides on the branch at arc length s_c (it moves with the branch there).
+//    For a uniform branch with no children this is a quarter of its mass. phi is the first
+//    Euler-Bernoulli cantilever mode of a uniform beam.
+//  - Stiffness k = 4 m pi^2 f^2 of the first mode (bend_u).
+//  - Frames (u, v, w) from the branch and its parent (paper Fig. 9b; core/frames.h), levels from
+//    the hierarchy, and optionally ids renumbered in depth-first order (paper: "a standard
+//    depth-first-search algorithm is employed to create the hierarchy").
+//
+// Usage:
+//   const simtree::Tree static_tree = simtree::ReadTreeJson("static.json");
+//   const auto materials = simtree::identification::ReadMaterialsJson("materials.json");
+//   simtree::simready::BuildReport report;
+//   const simtree::Tree tree =
+//       simtree::simready::BuildSimulationReadyTree(static_tree, materials, {}, &report);
+
+#include <string>
+#include <vector>
+
+#include "simtree/core/tree.h"
+#include "simtree/identification/materials_file.h"
+#include "simtree/simready/detail/interpolation.h"
+
+namespace simtree::simready {
+
+struct BuildOptions {
+  double wood_density_kg_m3 = 900.0;  // green wood, bark and water included
+  // Count the sub-trees riding on a branch in its modal mass (see above).
+  bool include_subtree_mass = true;
+  // Renumber branches in depth-first pre-order (each sub-tree then has consecutive ids); markers
+  // follow their branches.
+  bool renumber_depth_first = false;
+  InterpolationOptions interpolation;
+};
+
+struct BuildReport {
+  int measured = 0;
+  int interpolated = 0;
+  InterpolationModel interpolation;
+  double total_mass_kg = 0.0;
+  std::vector<std::string> notes;  // e.g. measured values on branches the tree does not have
+};
+
+// The first bending mode shape of a uniform Euler-Bernoulli cantilever at xi = s / L in [0, 1],
+// normalised so phi(1) = 1.
+double CantileverModeShape(double xi);
+
+// Modal mass of `branch` (see above), with `subtree_mass[c]` the whole mass of the sub-tree of
+// branch c (empty: no children counted).
+double BranchModalMass(const Tree& tree, int branch, double density_kg_m3,
+                       const std::vector<double>& subtree_mass = {});
+
+// Mass of every branch's sub-tree (the branch and all below it), density times volume.
+std::vector<double> SubtreeMasses(const Tree& tree, double density_kg_m3);
+
+// Throws InputError when materials name branches the tree lacks or measure none of its branches.
+Tree BuildSimulationReadyTree(const Tree& static_tree,
+                              const identification::MaterialsFile& materials,
+                              const BuildOptions& options = {}, BuildReport* report = nullptr);
+
+// Branch ids in depth-first order become 0..n-1; parents, markers follow. Returns the new tree
+// and, in `new_id`, the new id of each old one.
+Tree RenumberDepthFirst(const Tree& tree, std::vector<int>* new_id = nullptr);
+
+}  // namespace simtree::simready

@@ -1,0 +1,46 @@
+#pragma once
+// OpenGL with no window: an OpenGL 3.3 core context and a framebuffer of a given size to draw
+// into and read back. What works on a machine without a display, in order:
+//   1. EGL on Mesa's surfaceless platform (no X server at all; llvmpipe on a machine without GPU);
+//   2. an invisible GLFW window on the X display, starting Xvfb first when there is none.
+// The choice is logged and kept in description().
+
+#include <memory>
+#include <string>
+
+#include "simtree/io/image_io.h"
+
+namespace simtree::viewer {
+
+enum class OffscreenBackend { kAuto, kEgl, kXvfb };
+
+struct OffscreenOptions {
+  int width = 1280;
+  int height = 720;
+  int samples = 4;  // multisample anti-aliasing (0 = off)
+  OffscreenBackend backend = OffscreenBackend::kAuto;
+};
+
+class OffscreenContext {
+ public:
+  // Makes the context current. Throws simtree::Error naming what failed when no backend works.
+  explicit OffscreenContext(const OffscreenOptions& options);
+  ~OffscreenContext();
+  OffscreenContext(const OffscreenContext&) = delete;
+  OffscreenContext& operator=(const OffscreenContext&) = delete;
+
+  int width() const;
+  int height() const;
+  // Binds the framebuffer for drawing.
+  void Bind();
+  // Resolves the multisampled framebuffer and reads it, top row first.
+  RgbImage Read();
+  // "EGL surfaceless: llvmpipe (LLVM 15.0.6, 256 bits) (OpenGL 4.5 (Core Profile) Mesa 22.3.6)".
+  const std::string& description() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace simtree::viewer

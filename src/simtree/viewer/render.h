@@ -1,0 +1,63 @@
+#pragma once
+// `simtree render`: a simulation run drawn frame by frame without a display (offscreen_context.h)
+// into numbered PNGs, optionally encoded into a video. Two layouts:
+//  - the tree alone, from an orbit camera that frames it (or a calibrated camera);
+//  - side by side (the paper's Fig. 15): a capture's pull-test colour frames on the left and the
+//    simulation drawn from the same camera (its intrinsics and pose) on the right, frame for frame
+//    at the capture's times.
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "simtree/core/tree.h"
+#include "simtree/dynamics/simulate.h"
+#include "simtree/viewer/detail/camera.h"
+#include "simtree/viewer/detail/foliage.h"
+#include "simtree/viewer/detail/leaf_model.h"
+#include "simtree/viewer/detail/offscreen_context.h"
+#include "simtree/viewer/scene_renderer.h"
+
+namespace simtree::viewer {
+
+struct RenderOptions {
+  int width = 1280;  // of the simulated view (side by side: the capture's size instead)
+  int height = 720;
+  int samples = 4;
+  OffscreenBackend backend = OffscreenBackend::kAuto;
+  SceneStyle style;
+  SceneOptions scene;
+  // Orbit camera angles about the tree's centre; the distance frames the whole tree.
+  double yaw_rad = -1.5707963267948966;
+  double pitch_rad = 0.15;
+  double zoom = 1.0;  // < 1 comes closer
+  // A calibrated camera instead of the orbit camera (what side by side uses).
+  std::optional<CameraIntrinsics> intrinsics;
+  std::optional<Eigen::Isometry3d> world_from_camera;
+  // Side by side with this capture's pull stream (needs world_from_camera or gt/pull_camera.json).
+  std::optional<std::filesystem::path> capture;
+  bool markers = true;     // the tree's markers as dots
+  double video_fps = 0.0;  // the frame rate the video plays at; 0 = the simulation's
+};
+
+struct RenderResult {
+  int frames = 0;
+  int width = 0, height = 0;  // of the written frames
+  std::string backend;        // what drew them (EGL surfaceless, Xvfb ...)
+  double seconds = 0.0;       // wall time, simulation and drawing and writing
+  double draw_ms_per_frame = 0.0;
+  int64_t triangles_per_frame = 0;
+  double simulated_fps = 0.0;  // frames per simulated second
+};
+
+// Runs `simulation` on `tree` and writes <out_dir>/000000.png, 000001.png, ... (the folder is
+// replaced whole, or left untouched on error). `foliage` may be null. For side by side the run's
+// frame rate and duration become the capture's.
+RenderResult RenderSimulation(const Tree& tree, dynamics::SimulationOptions simulation,
+                              const LeafAssets* foliage, const std::vector<LeafInstance>& leaves,
+                              const RenderOptions& options, const std::filesystem::path& out_dir);
+
+}  // namespace simtree::viewer

@@ -1,0 +1,143 @@
+#include "simtree/simready/build.h"
+
+#include <cmath>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "simtree/core/error.h"
+#include "simtree/core/units.h"
+#include "simtree/core/validate.h"
+#include "identification/tree_fixture.h"
+
+namespace simtree::simready {
+namespace {
+
+using ::testing::HasSubstr;
+
+TEST(SimulationReady, CantileverModeShapeIsTipNormalisedWithAQuarterModalMass) {
+  EXPECT_NEAR(CantileverModeShape(0.0), 0.0, 1e-12);
+  EXPECT_NEAR(CantileverModeShape(1.0), 1.0, 1e-12);
+  // Clamped: zero slope at the root, so phi grows like xi^2 there.
+  EXPECT_NEAR(CantileverModeShape(1e-3) / CantileverModeShape(2e-3), 0.25, 1e-3);
+  double integral = 0;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) integral += std::pow(CantileverModeShape((i + 0.5) / n), 2) / n;
+  EXPECT_NEAR(integral, 0.25, 1e-6);  // the known modal mass of a uniform cantilever
+}
+
+TEST(SimulationReady, ModalMassOfAUniformBranchAndOfOneCarryingAnother) {
+  Tree tree;
+  tree.branches.push_back(test::StraightBranch(0, -1, 0, {0, 0, 0}, {0, 0, 1}, 2.0, 0.05, 0.05, 9));
+  AssignLevels(tree);
+  const double rho = 800, mass = rho * kPi * 0.05 * 0.05 * 2.0;
+  EXPECT_NEAR(BranchModalMass(tree, 0, rho), 0.25 * mass, 1e-3 * mass);
+  // A child at the tip adds its whole mass (phi = 1 there); at mid-length, phi(0.5)^2 of it.
+  tree.branches.push_back(test::StraightBranch(1, 0, 8, {0, 0, 2}, {1, 0, 0}, 1.0, 0.02, 0.02));
+  tree.branches.push_back(test::StraightBranch(2, 0, 4, {0, 0, 1}, {0, 1, 0}, 1.0, 0.02, 0.02));
+  AssignLevels(tree);
+  const std::vector<double> subtree = SubtreeMasses(tree, rho);
+  const double child = rho * kPi * 0.02 * 0.02 * 1.0;
+  EXPECT_NEAR(subtree[0], mass + 2 * child, 1e-9 * mass);
+  EXPECT_NEAR(BranchModalMass(tree, 0, rho, subtree),
+              0.25 * mass + child + child * std::pow(CantileverModeShape(0.5), 2), 1e-3 * mass);
+}
+
+identification::MaterialsFile Measured(std::vector<std::pair<int, double>> branch_frequency) {
+  identification::MaterialsFile m;
+  for (auto [branch, f] : branch_frequency) {
+    identification::BranchMaterial b;
+    b.branch = branch;
+    b.modes = {Mode{ModeKind::kBendU, 0.95 * f, 0.036}, Mode{ModeKind::kBendW, 1.05 * f, 0.024},
+               Mode{ModeKind::kTwistV, f, 0.03}};
+    m.branches.push_back(b);
+  }
+  return m;
+}
+
+TEST(SimulationReady, MeasuredBranchesKeepTheirValuesOthersAreInterpolatedAndMarked) {
+  const Tree tree = test::IdentificationTree();
+  BuildReport report;
+  BuildOptions options;
+  options.wood_density_kg_m3 = 850;
+  const Tree ready =
+      BuildSimulationReadyTree(tree, Measured({{0, 1.0}, {1, 1.2}, {4, 1.4}}), options, &report);
+  EXPECT_TRUE(ready.IsSimulationReady());
+  EXPECT_TRUE(FindProblems(ready, {.require_materials = true}).empty());
+  EXPECT_EQ(report.measured, 3);
+  EXPECT_EQ(report.interpolated, 3);
+  const Material& m1 = *ready.branches[1].material;
+  EXPECT_EQ(m1.source, MaterialSource::kMeasured);
+  EXPECT_DOUBLE_EQ(m1.modes[0].frequency_hz, 0.95 * 1.2);
+  EXPECT_DOUBLE_EQ(m1.modes[1].damping_ratio, 0.024);
+  for (int b : {2, 3, 5}) {
+    const Material& m = *ready.branches[b].material;
+    EXPECT_EQ(m.source, MaterialSource::kInterpolated) << b;
+    // Inside the measured range, the three modes in the measured branches' proportions.
+    EXPECT_GE(m.modes[2].frequency_hz, 1.0 - 1e-9);
+    EXPECT_LE(m.modes[2].frequency_hz, 1.4 + 1e-9);
+    EXPECT_NEAR(m.modes[0].frequency_hz / m.modes[2].frequency_hz, 0.95, 1e-9);
+    EXPECT_NEAR(m.modes[1].damping_ratio / m.modes[2].damping_ratio, 0.8, 1e-9);
+  }
+  for (const Branch& b : ready.branches) {
+    const Material& m = *b.material;
+    EXPECT_NEAR(m.mass_kg, BranchModalMass(ready, b.id, 850, SubtreeMasses(ready, 850)), 1e-12);
+    EXPECT_NEAR(m.stiffness, 4 * m.mass_kg * kPi * kPi * std::pow(m.modes[0].frequency_hz, 2),
+                1e-9 * m.stiffness);
+  }
+  EXPECT_NEAR(report.total_mass_kg, SubtreeMasses(tree, 850)[0], 1e-9);
+}
+
+TEST(SimulationReady, LinksWithoutBranchesUseTheStaticTreesMarkers) {
+  Tree tree = test::IdentificationTree();
+  tree.markers.push_back({0, "M0", 2, 0.4, -1, tree.branches[2].PointAt(0.4)});
+  identification::MaterialsFile m;
+  identification::LinkMaterial link;
+  link.child = 0;
+  link.value.frequency_hz = 1.3;
+  link.value.damping_ratio = 0.04;
+  link.planes = {link.value, link.value};
+  m.links.push_back(link);
+  const Tree ready = BuildSimulationReadyTree(tree, m);
+  EXPECT_EQ(ready.branches[2].material->source, MaterialSource::kMeasured);
+  EXPECT_DOUBLE_EQ(ready.branches[2].material->modes[0].frequency_hz, 1.3);
+  EXPECT_DOUBLE_EQ(ready.branches[0].material->modes[0].frequency_hz, 1.3);
+}
+
+TEST(SimulationReady, NothingMeasuredOrBranchesTheTreeLacksAreErrors) {
+  const Tree tree = test::IdentificationTree();
+  EXPECT_THAT([&] { BuildSimulationReadyTree(tree, identification::MaterialsFile{}); },
+              ::testing::ThrowsMessage<InputError>(HasSubstr("no link has a measured value")));
+  EXPECT_THAT(
+      [&] {
+        BuildSimulationReadyTree(tree, Measured({{9, 1.0}}));
+      },
+      ::testing::ThrowsMessage<InputError>(HasSubstr("branch 9 is not in the tree")));
+  identification::MaterialsFile unplaced;
+  identification::LinkMaterial link;
+  link.child = 3;
+  link.value.frequency_hz = 1.0;
+  link.value.damping_ratio = 0.03;
+  unplaced.links.push_back(link);
+  EXPECT_THAT([&] { BuildSimulationReadyTree(tree, unplaced); },
+              ::testing::ThrowsMessage<InputError>(HasSubstr("none is on a known branch")));
+}
+
+TEST(SimulationReady, DepthFirstRenumberingKeepsTheHierarchy) {
+  Tree tree = test::IdentificationTree();
+  tree.markers.push_back({0, "M0", 4, 0.1, -1, tree.branches[4].PointAt(0.1)});
+  std::vector<int> new_id;
+  const Tree renumbered = RenumberDepthFirst(tree, &new_id);
+  // Depth-first: 0, 1, 4, 2, 5, 3.
+  EXPECT_EQ(new_id, (std::vector<int>{0, 1, 3, 5, 2, 4}));
+  EXPECT_EQ(renumbered.branches[2].parent, 1);
+  EXPECT_EQ(renumbered.markers[0].branch, 2);
+  EXPECT_TRUE(FindProblems(renumbered).empty());
+  for (int old = 0; old < tree.size(); ++old) {
+    EXPECT_EQ(renumbered.branches[new_id[old]].nodes.front().position,
+              tree.branches[old].nodes.front().position);
+  }
+}
+
+}  // namespace
+}  // namespace simtree::simready
