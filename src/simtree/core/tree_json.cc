@@ -27,60 +27,52 @@ ojson MaterialJson(const Material& m) {
           {"source", ToString(m.source)}};
 }
 
-Material ReadMaterial(const JsonReader& r, const nlohmann::json& j, const std::string& at) {
+Material ReadMaterial(const JsonNode& j) {
   Material m;
-  const auto& modes = r.Array(r.Field(j, "modes", at), Member(at, "modes"));
+  const JsonNode modes = j.Field("modes");
   if (modes.size() != 3) {
-    r.Fail(Member(at, "modes"),
-           fmt::format("expected 3 modes (bend_u, bend_w, twist_v), got {}", modes.size()));
+    modes.Fail(fmt::format("expected 3 modes (bend_u, bend_w, twist_v), got {}", modes.size()));
   }
   for (size_t i = 0; i < 3; ++i) {
-    const std::string mat = Element(Member(at, "modes"), i);
-    m.modes[i].kind = ParseModeKind(r.String(r.Field(modes[i], "kind", mat), Member(mat, "kind")),
-                                    r.source(), Member(mat, "kind"));
-    m.modes[i].frequency_hz =
-        r.Number(r.Field(modes[i], "frequency_hz", mat), Member(mat, "frequency_hz"));
-    m.modes[i].damping_ratio =
-        r.Number(r.Field(modes[i], "damping_ratio", mat), Member(mat, "damping_ratio"));
+    const JsonNode mode = modes.Item(i);
+    const JsonNode kind = mode.Field("kind");
+    m.modes[i].kind = ParseModeKind(kind.String(), kind.source(), kind.at());
+    m.modes[i].frequency_hz = mode.Number("frequency_hz");
+    m.modes[i].damping_ratio = mode.Number("damping_ratio");
   }
-  m.mass_kg = r.Number(r.Field(j, "mass_kg", at), Member(at, "mass_kg"));
-  m.stiffness = r.Number(r.Field(j, "stiffness", at), Member(at, "stiffness"));
-  m.source = ParseMaterialSource(r.String(r.Field(j, "source", at), Member(at, "source")),
-                                 r.source(), Member(at, "source"));
+  m.mass_kg = j.Number("mass_kg");
+  m.stiffness = j.Number("stiffness");
+  const JsonNode source = j.Field("source");
+  m.source = ParseMaterialSource(source.String(), source.source(), source.at());
   return m;
 }
 
-Branch ReadBranch(const JsonReader& r, const nlohmann::json& j, const std::string& at,
-                  bool* has_frame) {
+Branch ReadBranch(const JsonNode& j, bool* has_frame) {
   Branch b;
-  b.id = r.Integer(r.Field(j, "id", at), Member(at, "id"));
-  b.parent = r.Integer(r.Field(j, "parent", at), Member(at, "parent"));
-  b.parent_node = r.Integer(r.Field(j, "parent_node", at), Member(at, "parent_node"));
-  b.level = r.Integer(r.Field(j, "level", at), Member(at, "level"));
-  const std::string nat = Member(at, "nodes");
-  const auto& nodes = r.Array(r.Field(j, "nodes", at), nat);
+  b.id = j.Integer("id");
+  b.parent = j.Integer("parent");
+  b.parent_node = j.Integer("parent_node");
+  b.level = j.Integer("level");
+  const JsonNode nodes = j.Field("nodes");
   b.nodes.reserve(nodes.size());
-  for (size_t i = 0; i < nodes.size(); ++i) {
-    const std::string eat = Element(nat, i);
-    if (!nodes[i].is_array() || nodes[i].size() != 4) {
-      r.Fail(eat, fmt::format("expected 4 numbers [x, y, z, radius], got {}", nodes[i].dump()));
+  for (const JsonNode& node : nodes.Items()) {
+    if (!node.json().is_array() || node.json().size() != 4) {
+      node.Fail(fmt::format("expected 4 numbers [x, y, z, radius], got {}", node.json().dump()));
     }
     Node n;
-    n.position = {r.Number(nodes[i][0], Element(eat, 0)), r.Number(nodes[i][1], Element(eat, 1)),
-                  r.Number(nodes[i][2], Element(eat, 2))};
-    n.radius = r.Number(nodes[i][3], Element(eat, 3));
+    n.position = {node.Item(0).Number(), node.Item(1).Number(), node.Item(2).Number()};
+    n.radius = node.Item(3).Number();
     b.nodes.push_back(n);
   }
-  *has_frame = r.Has(j, "frame");
+  *has_frame = j.Has("frame");
   if (*has_frame) {
-    const std::string fat = Member(at, "frame");
-    const auto& f = r.Field(j, "frame", at);
-    b.frame.u = r.Vector3(r.Field(f, "u", fat), Member(fat, "u"));
-    b.frame.v = r.Vector3(r.Field(f, "v", fat), Member(fat, "v"));
-    b.frame.w = r.Vector3(r.Field(f, "w", fat), Member(fat, "w"));
+    const JsonNode frame = j.Field("frame");
+    b.frame.u = frame.Vector3("u");
+    b.frame.v = frame.Vector3("v");
+    b.frame.w = frame.Vector3("w");
   }
-  if (r.Has(j, "material") && !j["material"].is_null()) {
-    b.material = ReadMaterial(r, j["material"], Member(at, "material"));
+  if (const auto material = j.Find("material"); material && !material->is_null()) {
+    b.material = ReadMaterial(*material);
   }
   return b;
 }
@@ -106,53 +98,38 @@ MaterialSource ParseMaterialSource(const std::string& name, const std::string& s
       fmt::format("expected \"measured\", \"interpolated\" or \"default\", got \"{}\"", name));
 }
 
-Tree TreeFromJson(const nlohmann::json& doc, const std::string& source,
+Tree TreeFromJson(const nlohmann::json& value, const std::string& source,
                   const ValidationOptions& validation) {
-  JsonReader r(source);
-  r.Object(doc, "");
-  const std::string format = r.String(r.Field(doc, "format", ""), "format");
-  if (format != kTreeFormat) {
-    r.Fail("format", fmt::format("expected \"{}\", got \"{}\"", kTreeFormat, format));
-  }
-  const int version = r.Integer(r.Field(doc, "version", ""), "version");
-  if (version != kTreeFormatVersion) {
-    r.Fail("version", fmt::format("expected {} (this simtree reads version {}), got {}",
-                                  kTreeFormatVersion, kTreeFormatVersion, version));
-  }
+  const JsonNode doc(value, source);
+  CheckFormat(doc, kTreeFormat, kTreeFormatVersion);
   Tree tree;
-  if (r.Has(doc, "metadata")) {
-    const auto& meta = r.Object(doc["metadata"], "metadata");
-    if (r.Has(meta, "species"))
-      tree.metadata.species = r.String(meta["species"], "metadata.species");
-    if (r.Has(meta, "source")) tree.metadata.source = r.String(meta["source"], "metadata.source");
-    if (r.Has(meta, "units")) {
-      tree.metadata.units = r.String(meta["units"], "metadata.units");
+  if (const auto meta = doc.Find("metadata")) {
+    meta->ExpectObject();
+    if (const auto species = meta->Find("species")) tree.metadata.species = species->String();
+    if (const auto from = meta->Find("source")) tree.metadata.source = from->String();
+    if (const auto units = meta->Find("units")) {
+      tree.metadata.units = units->String();
       if (tree.metadata.units != "m") {
-        r.Fail("metadata.units",
-               fmt::format("expected \"m\" (simtree files are in metres), got \"{}\"",
-                           tree.metadata.units));
+        units->Fail(fmt::format("expected \"m\" (simtree files are in metres), got \"{}\"",
+                                tree.metadata.units));
       }
     }
   }
-  const auto& branches = r.Array(r.Field(doc, "branches", ""), "branches");
   bool all_frames = true;
-  for (size_t i = 0; i < branches.size(); ++i) {
+  for (const JsonNode& branch : doc.Field("branches").Items()) {
     bool has_frame = false;
-    tree.branches.push_back(ReadBranch(r, branches[i], Element("branches", i), &has_frame));
+    tree.branches.push_back(ReadBranch(branch, &has_frame));
     all_frames = all_frames && has_frame;
   }
-  if (r.Has(doc, "markers")) {
-    const auto& markers = r.Array(doc["markers"], "markers");
-    for (size_t i = 0; i < markers.size(); ++i) {
-      const std::string at = Element("markers", i);
+  if (const auto markers = doc.Find("markers")) {
+    for (const JsonNode& j : markers->Items()) {
       Marker m;
-      m.id = r.Integer(r.Field(markers[i], "id", at), Member(at, "id"));
-      if (r.Has(markers[i], "label")) m.label = r.String(markers[i]["label"], Member(at, "label"));
-      m.branch = r.Integer(r.Field(markers[i], "branch", at), Member(at, "branch"));
-      m.arc_length = r.Number(r.Field(markers[i], "arc_length", at), Member(at, "arc_length"));
-      if (r.Has(markers[i], "parent"))
-        m.parent = r.Integer(markers[i]["parent"], Member(at, "parent"));
-      m.position = r.Vector3(r.Field(markers[i], "position", at), Member(at, "position"));
+      m.id = j.Integer("id");
+      if (const auto label = j.Find("label")) m.label = label->String();
+      m.branch = j.Integer("branch");
+      m.arc_length = j.Number("arc_length");
+      if (const auto parent = j.Find("parent")) m.parent = parent->Integer();
+      m.position = j.Vector3("position");
       tree.markers.push_back(m);
     }
   }

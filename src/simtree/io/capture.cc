@@ -31,17 +31,6 @@ void RequireFile(const fs::path& path, const std::string& what) {
   }
 }
 
-void CheckFormat(const JsonReader& r, const nlohmann::json& doc, const std::string& format,
-                 int version) {
-  const std::string got = r.String(r.Field(doc, "format", ""), "format");
-  if (got != format) r.Fail("format", fmt::format("expected \"{}\", got \"{}\"", format, got));
-  const int v = r.Integer(r.Field(doc, "version", ""), "version");
-  if (v != version) {
-    r.Fail("version",
-           fmt::format("expected {} (this simtree reads version {}), got {}", version, version, v));
-  }
-}
-
 std::vector<std::string> SplitCsvLine(const std::string& line) {
   std::vector<std::string> cells;
   std::string cell;
@@ -130,19 +119,18 @@ void ValidateIntrinsics(const CameraIntrinsics& k, const std::string& source) {
 
 CameraIntrinsics ReadIntrinsicsJson(const fs::path& path) {
   RequireFile(path, "camera intrinsics JSON");
-  const std::string source = path.string();
-  const nlohmann::json doc = ParseJson(ReadFile(path), source);
-  const JsonReader r(source);
-  r.Object(doc, "");
+  const JsonDocument file = ReadJsonDocument(path);
+  const JsonNode doc = file.root();
+  doc.ExpectObject();
   CameraIntrinsics k;
-  k.width = r.Integer(r.Field(doc, "width", ""), "width");
-  k.height = r.Integer(r.Field(doc, "height", ""), "height");
-  k.fx = r.Number(r.Field(doc, "fx", ""), "fx");
-  k.fy = r.Number(r.Field(doc, "fy", ""), "fy");
-  k.cx = r.Number(r.Field(doc, "cx", ""), "cx");
-  k.cy = r.Number(r.Field(doc, "cy", ""), "cy");
-  k.depth_scale_m = r.Number(r.Field(doc, "depth_scale_m", ""), "depth_scale_m");
-  ValidateIntrinsics(k, source);
+  k.width = doc.Integer("width");
+  k.height = doc.Integer("height");
+  k.fx = doc.Number("fx");
+  k.fy = doc.Number("fy");
+  k.cx = doc.Number("cx");
+  k.cy = doc.Number("cy");
+  k.depth_scale_m = doc.Number("depth_scale_m");
+  ValidateIntrinsics(k, file.source);
   return k;
 }
 
@@ -163,15 +151,13 @@ void WriteIntrinsicsJson(const CameraIntrinsics& k, const fs::path& path) {
 
 CaptureInfo ReadCaptureInfo(const fs::path& path) {
   RequireFile(path, "capture description capture.json");
-  const std::string source = path.string();
-  const nlohmann::json doc = ParseJson(ReadFile(path), source);
-  const JsonReader r(source);
-  r.Object(doc, "");
-  CheckFormat(r, doc, kCaptureFormat, kCaptureFormatVersion);
+  const JsonDocument file = ReadJsonDocument(path);
+  const JsonNode doc = file.root();
+  CheckFormat(doc, kCaptureFormat, kCaptureFormatVersion);
   CaptureInfo info;
-  info.sensor = r.String(r.Field(doc, "sensor", ""), "sensor");
-  if (r.Has(doc, "species")) info.species = r.String(doc["species"], "species");
-  if (r.Has(doc, "notes")) info.notes = r.String(doc["notes"], "notes");
+  info.sensor = doc.String("sensor");
+  if (const auto species = doc.Find("species")) info.species = species->String();
+  if (const auto notes = doc.Find("notes")) info.notes = notes->String();
   return info;
 }
 
@@ -189,31 +175,27 @@ void WriteCaptureInfo(const CaptureInfo& info, const fs::path& path) {
 
 std::vector<MarkerLink> ReadMarkersJson(const fs::path& path) {
   RequireFile(path, "marker list markers.json");
-  const std::string source = path.string();
-  const nlohmann::json doc = ParseJson(ReadFile(path), source);
-  const JsonReader r(source);
-  r.Object(doc, "");
-  CheckFormat(r, doc, kMarkersFormat, kMarkersFormatVersion);
-  const auto& list = r.Array(r.Field(doc, "markers", ""), "markers");
-  if (list.empty()) r.Fail("markers", "expected at least one marker, got an empty list");
+  const JsonDocument file = ReadJsonDocument(path);
+  const JsonNode doc = file.root();
+  CheckFormat(doc, kMarkersFormat, kMarkersFormatVersion);
+  const JsonNode list = doc.Field("markers");
+  if (list.size() == 0) list.Fail("expected at least one marker, got an empty list");
   std::vector<MarkerLink> markers;
   std::map<int, size_t> index_of;
-  for (size_t i = 0; i < list.size(); ++i) {
-    const std::string at = Element("markers", i);
+  for (const JsonNode& item : list.Items()) {
     MarkerLink m;
-    m.id = r.Integer(r.Field(list[i], "id", at), Member(at, "id"));
-    if (m.id < 0) r.Fail(Member(at, "id"), fmt::format("expected an id >= 0, got {}", m.id));
-    m.label = r.Has(list[i], "label") ? r.String(list[i]["label"], Member(at, "label"))
-                                      : fmt::format("M{}", m.id);
-    m.parent = r.Integer(r.Field(list[i], "parent", at), Member(at, "parent"));
-    if (r.Has(list[i], "branch")) {
-      m.branch = r.Integer(list[i]["branch"], Member(at, "branch"));
-      if (*m.branch < 0) {
-        r.Fail(Member(at, "branch"), fmt::format("expected a branch id >= 0, got {}", *m.branch));
-      }
+    const JsonNode id = item.Field("id");
+    m.id = id.Integer();
+    if (m.id < 0) id.Fail(fmt::format("expected an id >= 0, got {}", m.id));
+    const auto label = item.Find("label");
+    m.label = label ? label->String() : fmt::format("M{}", m.id);
+    m.parent = item.Integer("parent");
+    if (const auto branch = item.Find("branch")) {
+      m.branch = branch->Integer();
+      if (*m.branch < 0) branch->Fail(fmt::format("expected a branch id >= 0, got {}", *m.branch));
     }
-    if (!index_of.emplace(m.id, i).second) {
-      r.Fail(Member(at, "id"), fmt::format("marker id {} appears twice", m.id));
+    if (!index_of.emplace(m.id, markers.size()).second) {
+      id.Fail(fmt::format("marker id {} appears twice", m.id));
     }
     markers.push_back(m);
   }
@@ -226,22 +208,22 @@ std::vector<MarkerLink> ReadMarkersJson(const fs::path& path) {
       continue;
     }
     if (!index_of.count(m.parent)) {
-      r.Fail(at,
-             fmt::format("marker {} links to marker {}, which is not in the list", m.id, m.parent));
+      doc.FailAt(at, fmt::format("marker {} links to marker {}, which is not in the list", m.id,
+                                 m.parent));
     }
     // Walk to the root; more steps than markers means a cycle.
     int current = m.parent;
     for (size_t steps = 0; current != -1; ++steps) {
       if (steps > markers.size() || current == m.id) {
-        r.Fail(at, fmt::format("the links from marker {} form a cycle", m.id));
+        doc.FailAt(at, fmt::format("the links from marker {} form a cycle", m.id));
       }
       current = markers[index_of.at(current)].parent;
     }
   }
   if (roots != 1) {
-    r.Fail("markers", fmt::format("expected exactly one root marker (parent -1, on the trunk), "
-                                  "got {}",
-                                  roots));
+    doc.FailAt(
+        "markers",
+        fmt::format("expected exactly one root marker (parent -1, on the trunk), got {}", roots));
   }
   return markers;
 }

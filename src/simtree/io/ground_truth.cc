@@ -22,39 +22,30 @@ constexpr const char* kPullLoadFormat = "simtree.pull_load";
 
 std::string Dump(const ojson& doc) { return doc.dump(1) + "\n"; }
 
-nlohmann::json ReadDocument(const fs::path& path) {
+JsonDocument ReadDocument(const fs::path& path) {
   if (!fs::is_regular_file(path)) throw InputError(path.string(), "", "missing (ground truth)");
-  return ParseJson(ReadFile(path), path.string());
+  return ReadJsonDocument(path);
 }
 
 ojson Vec(const Eigen::Vector3d& v) { return ojson::array({v.x(), v.y(), v.z()}); }
 
-void CheckFormat(const JsonReader& r, const nlohmann::json& doc, const char* format) {
-  const std::string got = r.String(r.Field(doc, "format", ""), "format");
-  if (got != format) r.Fail("format", fmt::format("expected \"{}\", got \"{}\"", format, got));
-  const int version = r.Integer(r.Field(doc, "version", ""), "version");
-  if (version != 1) r.Fail("version", fmt::format("expected 1, got {}", version));
-}
-
 }  // namespace
 
-Eigen::Isometry3d PoseFromJson(const nlohmann::json& value, const std::string& source,
-                               const std::string& at) {
-  const JsonReader r(source);
-  if (!value.is_array() || value.size() != 16) {
-    r.Fail(at, fmt::format("expected 16 numbers (a row-major 4x4 matrix), got {}",
-                           value.is_array() ? std::to_string(value.size()) + " values"
-                                            : std::string(value.type_name())));
+Eigen::Isometry3d PoseFromJson(const JsonNode& value) {
+  if (!value.json().is_array() || value.json().size() != 16) {
+    value.Fail(fmt::format("expected 16 numbers (a row-major 4x4 matrix), got {}",
+                           value.json().is_array() ? std::to_string(value.size()) + " values"
+                                                   : std::string(value.json().type_name())));
   }
   Eigen::Matrix4d m;
-  for (int i = 0; i < 16; ++i) m(i / 4, i % 4) = r.Number(value[i], Element(at, i));
+  for (int i = 0; i < 16; ++i) m(i / 4, i % 4) = value.Item(i).Number();
   if (m.row(3).transpose() != Eigen::Vector4d(0, 0, 0, 1)) {
-    r.Fail(at, "expected the last row 0 0 0 1 (a rigid transform)");
+    value.Fail("expected the last row 0 0 0 1 (a rigid transform)");
   }
   const Eigen::Matrix3d rot = m.topLeftCorner<3, 3>();
   if ((rot.transpose() * rot - Eigen::Matrix3d::Identity()).norm() > 1e-6 ||
       rot.determinant() < 0) {
-    r.Fail(at, "expected a rotation (orthonormal, determinant +1) in the upper-left 3x3");
+    value.Fail("expected a rotation (orthonormal, determinant +1) in the upper-left 3x3");
   }
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
   pose.linear() = rot;
@@ -70,16 +61,12 @@ ojson PoseToJson(const Eigen::Isometry3d& pose) {
 }
 
 std::vector<ViewPose> ReadScanPoses(const fs::path& path) {
-  const nlohmann::json doc = ReadDocument(path);
-  const JsonReader r(path.string());
-  const auto& views = r.Array(r.Field(doc, "views", ""), "views");
+  const JsonDocument file = ReadDocument(path);
   std::vector<ViewPose> poses;
-  for (size_t i = 0; i < views.size(); ++i) {
-    const std::string at = Element("views", i);
+  for (const JsonNode& view : file.root().Field("views").Items()) {
     ViewPose p;
-    p.name = r.String(r.Field(views[i], "name", at), Member(at, "name"));
-    p.world_from_camera = PoseFromJson(r.Field(views[i], "world_from_camera", at), path.string(),
-                                       Member(at, "world_from_camera"));
+    p.name = view.String("name");
+    p.world_from_camera = PoseFromJson(view.Field("world_from_camera"));
     poses.push_back(p);
   }
   return poses;
@@ -94,9 +81,8 @@ void WriteScanPoses(const std::vector<ViewPose>& poses, const fs::path& path) {
 }
 
 Eigen::Isometry3d ReadPullCamera(const fs::path& path) {
-  const nlohmann::json doc = ReadDocument(path);
-  const JsonReader r(path.string());
-  return PoseFromJson(r.Field(doc, "world_from_camera", ""), path.string(), "world_from_camera");
+  const JsonDocument file = ReadDocument(path);
+  return PoseFromJson(file.root().Field("world_from_camera"));
 }
 
 void WritePullCamera(const Eigen::Isometry3d& world_from_camera, const fs::path& path) {
@@ -112,21 +98,21 @@ double PullLoad::ForceAt(double t) const {
 }
 
 PullLoad ReadPullLoad(const fs::path& path) {
-  const nlohmann::json doc = ReadDocument(path);
-  const JsonReader r(path.string());
-  CheckFormat(r, doc, kPullLoadFormat);
+  const JsonDocument file = ReadDocument(path);
+  const JsonNode doc = file.root();
+  CheckFormat(doc, kPullLoadFormat, 1);
   PullLoad l;
-  l.branch = r.Integer(r.Field(doc, "branch", ""), "branch");
-  l.arc_length = r.Number(r.Field(doc, "arc_length", ""), "arc_length");
-  l.attach_point = r.Vector3(r.Field(doc, "attach_point", ""), "attach_point");
-  l.anchor = r.Vector3(r.Field(doc, "anchor", ""), "anchor");
-  l.force_n = r.Number(r.Field(doc, "force_n", ""), "force_n");
-  l.ramp_start_s = r.Number(r.Field(doc, "ramp_start_s", ""), "ramp_start_s");
-  l.hold_start_s = r.Number(r.Field(doc, "hold_start_s", ""), "hold_start_s");
-  l.release_s = r.Number(r.Field(doc, "release_s", ""), "release_s");
-  l.duration_s = r.Number(r.Field(doc, "duration_s", ""), "duration_s");
+  l.branch = doc.Integer("branch");
+  l.arc_length = doc.Number("arc_length");
+  l.attach_point = doc.Vector3("attach_point");
+  l.anchor = doc.Vector3("anchor");
+  l.force_n = doc.Number("force_n");
+  l.ramp_start_s = doc.Number("ramp_start_s");
+  l.hold_start_s = doc.Number("hold_start_s");
+  l.release_s = doc.Number("release_s");
+  l.duration_s = doc.Number("duration_s");
   if (!(l.ramp_start_s <= l.hold_start_s && l.hold_start_s <= l.release_s)) {
-    r.Fail("release_s", "expected ramp_start_s <= hold_start_s <= release_s");
+    doc.FailAt("release_s", "expected ramp_start_s <= hold_start_s <= release_s");
   }
   return l;
 }
@@ -147,33 +133,25 @@ void WritePullLoad(const PullLoad& l, const fs::path& path) {
 }
 
 std::vector<MarkerFrame2d> ReadMarkers2d(const fs::path& path) {
-  const nlohmann::json doc = ReadDocument(path);
-  const JsonReader r(path.string());
-  CheckFormat(r, doc, kMarkers2dFormat);
-  const auto& frames = r.Array(r.Field(doc, "frames", ""), "frames");
+  const JsonDocument file = ReadDocument(path);
+  const JsonNode doc = file.root();
+  CheckFormat(doc, kMarkers2dFormat, 1);
+  const JsonNode frames = doc.Field("frames");
   std::vector<MarkerFrame2d> out;
   out.reserve(frames.size());
-  for (size_t i = 0; i < frames.size(); ++i) {
-    const std::string at = Element("frames", i);
+  for (const JsonNode& frame : frames.Items()) {
     MarkerFrame2d f;
-    f.frame = r.Integer(r.Field(frames[i], "frame", at), Member(at, "frame"));
-    f.time_s = r.Number(r.Field(frames[i], "time_s", at), Member(at, "time_s"));
-    const std::string mat = Member(at, "markers");
-    const auto& markers = r.Array(r.Field(frames[i], "markers", at), mat);
-    for (size_t k = 0; k < markers.size(); ++k) {
-      const std::string kat = Element(mat, k);
+    f.frame = frame.Integer("frame");
+    f.time_s = frame.Number("time_s");
+    for (const JsonNode& marker : frame.Field("markers").Items()) {
       MarkerBox2d m;
-      m.id = r.Integer(r.Field(markers[k], "id", kat), Member(kat, "id"));
-      const auto& visible = r.Field(markers[k], "visible", kat);
-      if (!visible.is_boolean()) r.Fail(Member(kat, "visible"), "expected true or false");
-      m.visible = visible.get<bool>();
-      m.visible_fraction =
-          r.Number(r.Field(markers[k], "visible_fraction", kat), Member(kat, "visible_fraction"));
-      m.visible_pixels =
-          r.Integer(r.Field(markers[k], "visible_pixels", kat), Member(kat, "visible_pixels"));
-      const auto& box = r.Array(r.Field(markers[k], "box", kat), Member(kat, "box"));
-      if (box.size() != 4) r.Fail(Member(kat, "box"), "expected [x, y, w, h]");
-      for (int c = 0; c < 4; ++c) m.box[c] = r.Number(box[c], Element(Member(kat, "box"), c));
+      m.id = marker.Integer("id");
+      m.visible = marker.Bool("visible");
+      m.visible_fraction = marker.Number("visible_fraction");
+      m.visible_pixels = marker.Integer("visible_pixels");
+      const JsonNode box = marker.Field("box");
+      if (box.size() != 4) box.Fail("expected [x, y, w, h]");
+      for (int c = 0; c < 4; ++c) m.box[c] = box.Item(c).Number();
       f.markers.push_back(m);
     }
     out.push_back(std::move(f));
@@ -206,21 +184,17 @@ void WriteMarkers2d(const std::vector<MarkerFrame2d>& frames, const fs::path& pa
 namespace {
 
 // The optional "peaks" of a link or branch.
-std::vector<ModalTruth::ModePeak> ReadPeaks(const JsonReader& r, const nlohmann::json& owner,
-                                            const std::string& at) {
+std::vector<ModalTruth::ModePeak> ReadPeaks(const JsonNode& owner) {
   std::vector<ModalTruth::ModePeak> peaks;
-  if (!owner.contains("peaks")) return peaks;
-  const std::string pat = Member(at, "peaks");
-  const auto& list = r.Array(owner["peaks"], pat);
-  for (size_t k = 0; k < list.size(); ++k) {
-    const std::string kat = Element(pat, k);
+  const auto list = owner.Find("peaks");
+  if (!list) return peaks;
+  for (const JsonNode& peak : list->Items()) {
     ModalTruth::ModePeak p;
-    p.mode = r.Integer(r.Field(list[k], "mode", kat), Member(kat, "mode"));
-    p.frequency_hz = r.Number(r.Field(list[k], "frequency_hz", kat), Member(kat, "frequency_hz"));
-    p.damping_ratio =
-        r.Number(r.Field(list[k], "damping_ratio", kat), Member(kat, "damping_ratio"));
-    p.amplitude = r.Number(r.Field(list[k], "amplitude", kat), Member(kat, "amplitude"));
-    p.strength = r.Number(r.Field(list[k], "strength", kat), Member(kat, "strength"));
+    p.mode = peak.Integer("mode");
+    p.frequency_hz = peak.Number("frequency_hz");
+    p.damping_ratio = peak.Number("damping_ratio");
+    p.amplitude = peak.Number("amplitude");
+    p.strength = peak.Number("strength");
     peaks.push_back(p);
   }
   return peaks;
@@ -242,53 +216,44 @@ void WritePeaks(const std::vector<ModalTruth::ModePeak>& peaks, ojson& owner) {
 }  // namespace
 
 ModalTruth ReadModalTruth(const fs::path& path) {
-  const nlohmann::json doc = ReadDocument(path);
-  const JsonReader r(path.string());
-  CheckFormat(r, doc, kModalFormat);
+  const JsonDocument file = ReadDocument(path);
+  const JsonNode doc = file.root();
+  CheckFormat(doc, kModalFormat, 1);
   ModalTruth t;
-  t.source = r.String(r.Field(doc, "source", ""), "source");
-  const auto& modes = r.Array(r.Field(doc, "modes", ""), "modes");
-  for (size_t i = 0; i < modes.size(); ++i) {
-    const std::string at = Element("modes", i);
+  t.source = doc.String("source");
+  for (const JsonNode& mode : doc.Field("modes").Items()) {
     ModalTruth::TreeMode m;
-    m.frequency_hz = r.Number(r.Field(modes[i], "frequency_hz", at), Member(at, "frequency_hz"));
-    m.damping_ratio = r.Number(r.Field(modes[i], "damping_ratio", at), Member(at, "damping_ratio"));
+    m.frequency_hz = mode.Number("frequency_hz");
+    m.damping_ratio = mode.Number("damping_ratio");
     // Optional: files before the effective masses have neither.
-    const auto optional = [&](const char* key, std::optional<double>& field) {
-      if (r.Has(modes[i], key)) field = r.Number(modes[i][key], Member(at, key));
-    };
-    optional("horizontal_mass_fraction", m.horizontal_mass_fraction);
-    optional("torsion_mass_fraction", m.torsion_mass_fraction);
+    if (const auto f = mode.Find("horizontal_mass_fraction"))
+      m.horizontal_mass_fraction = f->Number();
+    if (const auto f = mode.Find("torsion_mass_fraction")) m.torsion_mass_fraction = f->Number();
     t.modes.push_back(m);
   }
-  if (r.Has(doc, "lowest_sway_mode")) {
-    const int mode = r.Integer(doc["lowest_sway_mode"], "lowest_sway_mode");
+  if (const auto lowest = doc.Find("lowest_sway_mode")) {
+    const int mode = lowest->Integer();
     if (mode < 0 || mode >= static_cast<int>(t.modes.size())) {
-      r.Fail("lowest_sway_mode", fmt::format("expected an index into modes (0-{}), got {}",
-                                             static_cast<int>(t.modes.size()) - 1, mode));
+      lowest->Fail(fmt::format("expected an index into modes (0-{}), got {}",
+                               static_cast<int>(t.modes.size()) - 1, mode));
     }
     t.lowest_sway_mode = mode;
   }
-  const auto& links = r.Array(r.Field(doc, "links", ""), "links");
-  for (size_t i = 0; i < links.size(); ++i) {
-    const std::string at = Element("links", i);
+  for (const JsonNode& link : doc.Field("links").Items()) {
     ModalTruth::Link l;
-    l.parent = r.Integer(r.Field(links[i], "parent", at), Member(at, "parent"));
-    l.child = r.Integer(r.Field(links[i], "child", at), Member(at, "child"));
-    l.frequency_hz = r.Number(r.Field(links[i], "frequency_hz", at), Member(at, "frequency_hz"));
-    l.damping_ratio = r.Number(r.Field(links[i], "damping_ratio", at), Member(at, "damping_ratio"));
-    l.peaks = ReadPeaks(r, links[i], at);
+    l.parent = link.Integer("parent");
+    l.child = link.Integer("child");
+    l.frequency_hz = link.Number("frequency_hz");
+    l.damping_ratio = link.Number("damping_ratio");
+    l.peaks = ReadPeaks(link);
     t.links.push_back(l);
   }
-  const auto& branches = r.Array(r.Field(doc, "branches", ""), "branches");
-  for (size_t i = 0; i < branches.size(); ++i) {
-    const std::string at = Element("branches", i);
+  for (const JsonNode& branch : doc.Field("branches").Items()) {
     ModalTruth::BranchTruth b;
-    b.branch = r.Integer(r.Field(branches[i], "branch", at), Member(at, "branch"));
-    b.frequency_hz = r.Number(r.Field(branches[i], "frequency_hz", at), Member(at, "frequency_hz"));
-    b.damping_ratio =
-        r.Number(r.Field(branches[i], "damping_ratio", at), Member(at, "damping_ratio"));
-    b.peaks = ReadPeaks(r, branches[i], at);
+    b.branch = branch.Integer("branch");
+    b.frequency_hz = branch.Number("frequency_hz");
+    b.damping_ratio = branch.Number("damping_ratio");
+    b.peaks = ReadPeaks(branch);
     t.branches.push_back(b);
   }
   return t;

@@ -20,12 +20,13 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 
+#include "simtree/core/json_util.h"
+
 namespace simtree {
 
 // A rigid transform as JSON: 16 numbers, row-major, last row 0 0 0 1, rotation orthonormal
-// (within 1e-6). `at` names the field in errors.
-Eigen::Isometry3d PoseFromJson(const nlohmann::json& value, const std::string& source,
-                               const std::string& at);
+// (within 1e-6).
+Eigen::Isometry3d PoseFromJson(const JsonNode& value);
 nlohmann::ordered_json PoseToJson(const Eigen::Isometry3d& pose);
 
 struct ViewPose {
