@@ -40,12 +40,13 @@ test: build
 test-fast: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) -L fast
 
-# The fast suite under AddressSanitizer + UndefinedBehaviorSanitizer.
+# The fast suite under AddressSanitizer + UndefinedBehaviorSanitizer, in a build that also links
+# every library into one LTO program with -Wodr (simtree_odr_check: two types with one name fail).
 # -O1 -g1: sanitizer reports keep function names and lines, and the heavy template files build in
 # well under half the time of -O2 -g (core/tree_json.cc: 47 s -> 18 s); CI builds everything twice.
 asan: deps
 	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DSIMTREE_SANITIZE=ON $(CMAKE_ARGS)
+	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DSIMTREE_SANITIZE=ON -DSIMTREE_ODR_CHECK=ON $(CMAKE_ARGS)
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	ASAN_OPTIONS=detect_leaks=1:detect_container_overflow=0:abort_on_error=1 \
 	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \

@@ -5,6 +5,13 @@ if(SIMTREE_WERROR)
   list(APPEND SIMTREE_WARNING_FLAGS -Werror)
 endif()
 
+# The one-definition-rule check: every object also carries GCC's LTO form (fat objects, so the
+# ordinary links are unchanged), and simtree_add_odr_check links libraries whole with -flto -Wodr:
+# two different types with one fully qualified name fail that link.
+if(SIMTREE_ODR_CHECK)
+  add_compile_options(-flto=auto -ffat-lto-objects)
+endif()
+
 if(SIMTREE_SANITIZE)
   add_compile_options(-fsanitize=address,undefined -fno-omit-frame-pointer
                       -fno-sanitize-recover=undefined)
@@ -60,4 +67,17 @@ function(simtree_add_benchmark name)
   target_compile_options(bench_${name} PRIVATE ${SIMTREE_WARNING_FLAGS})
   target_compile_definitions(bench_${name} PRIVATE
     SIMTREE_SHARED_DATA_DIR="${SIMTREE_SHARED_DIR}/data")
+endfunction()
+
+# simtree_add_odr_check(<target> LIBRARIES ...): a program that links every object of LIBRARIES
+# through the link-time optimiser with -Wodr as an error, so a type defined twice differently
+# under one name (a one-definition-rule violation) fails the build. The program does nothing.
+function(simtree_add_odr_check target)
+  cmake_parse_arguments(ARG "" "" "LIBRARIES" ${ARGN})
+  set(main ${CMAKE_CURRENT_BINARY_DIR}/${target}_main.cc)
+  file(WRITE ${main} "int main() { return 0; }\n")
+  add_executable(${target} ${main})
+  target_link_libraries(${target} PRIVATE "$<LINK_LIBRARY:WHOLE_ARCHIVE,${ARG_LIBRARIES}>")
+  # -O0 at the link: the check needs the type merging of the whole program, not its optimisation.
+  target_link_options(${target} PRIVATE -flto=auto -O0 -Wodr -Werror=odr)
 endfunction()
