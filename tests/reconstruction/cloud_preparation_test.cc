@@ -103,9 +103,13 @@ TEST(CloudPreparation, RefusesACloudWithNoVerticalStructure) {
   EXPECT_THAT(MessageOf(lying), HasSubstr("no vertical structure"));
 }
 
-TEST(CloudPreparation, RefusesABadScale) {
-  EXPECT_THAT(MessageOf(Trunk(), {.scale = -1.0}), HasSubstr("expected a positive scale"));
-  EXPECT_THAT(MessageOf(Trunk(), {.scale = std::nan("")}), HasSubstr("expected a positive scale"));
+TEST(CloudPreparation, RefusesBadOptionsBeforeLookingAtThePoints) {
+  EXPECT_EQ(MessageOf(Trunk(), {.scale = -1.0}), "options: scale: expected > 0, got -1");
+  EXPECT_THAT(MessageOf({}, {.scale = std::nan("")}), HasSubstr("scale: expected > 0, got nan"));
+  EXPECT_THAT(MessageOf(Trunk(), {.max_height_m = 60.0, .min_height_m = 70.0}),
+              HasSubstr("max_height_m: expected >= min_height_m (70), got 60"));
+  EXPECT_THAT(MessageOf(Trunk(), {.extent_trim = 0.7}),
+              HasSubstr("extent_trim: expected within [0, 0.5], got 0.7"));
 }
 
 TEST(CloudPreparation, IgnoresAFewFarOutliersWhenMeasuring) {

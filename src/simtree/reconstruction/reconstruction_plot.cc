@@ -10,6 +10,7 @@
 #include "simtree/core/atomic_file.h"
 #include "simtree/core/error.h"
 #include "simtree/io/mesh_io.h"
+#include "simtree/reconstruction/detail/option_checks.h"
 
 namespace simtree::reconstruction {
 namespace {
@@ -79,9 +80,16 @@ void DrawView(cv::Mat& image, const View& view, const Tree& tree,
 
 }  // namespace
 
+void ReconstructionPlotOptions::Validate() const {
+  CheckAtLeast("height", height, 1);
+  CheckShare("model_opacity", model_opacity);
+  CheckAtLeast("point_size", point_size, 1);
+}
+
 void WriteReconstructionPlot(const Tree& tree, std::span<const Eigen::Vector3d> points,
                              const std::filesystem::path& path,
                              const ReconstructionPlotOptions& options) {
+  options.Validate();
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector3d hi = -lo;
   for (const Eigen::Vector3d& p : points) {

@@ -9,6 +9,7 @@
 #include "simtree/core/statistics.h"
 #include "simtree/core/units.h"
 #include "simtree/reconstruction/detail/local_geometry.h"
+#include "simtree/reconstruction/detail/option_checks.h"
 #include "simtree/reconstruction/detail/point_index.h"
 #include "simtree/reconstruction/detail/trunk_cylinder.h"
 
@@ -70,9 +71,22 @@ std::vector<double> AllometricWeights(const Skeleton& skeleton, double tip_lengt
   return weight;
 }
 
+void RadiusOptions::Validate() const {
+  CheckPositive("pipe_exponent", pipe_exponent);
+  CheckNonNegative("tip_length_m", tip_length_m);
+  CheckPositive("min_radius_m", min_radius_m);
+  CheckAtLeast("fit_min_points", fit_min_points, 3);
+  CheckWithin("fit_min_arc_rad", fit_min_arc_rad, 0.0, 2 * M_PI);
+  CheckPositive("fit_max_residual", fit_max_residual);
+  CheckNonNegative("fit_min_radius_over_noise", fit_min_radius_over_noise);
+  CheckNotBelow("fit_max_ratio", fit_max_ratio, 1.0);
+  CheckNotBelow("max_correction", max_correction, 1.0);
+}
+
 void AssignRadii(Skeleton& skeleton, int anchor_node, double anchor_radius_m,
                  double fallback_root_radius_m, std::span<const Eigen::Vector3d> points,
                  double roughness_m, const RadiusOptions& options, RadiusStats* stats) {
+  options.Validate();
   RadiusStats local;
   RadiusStats& s = stats ? *stats : local;
   s = {};

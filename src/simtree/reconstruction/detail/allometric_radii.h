@@ -7,8 +7,8 @@
 // preserving, da Vinci's rule) to 2.5-3 (elastic and hydraulic scaling). With every twig carrying
 // the same pipe per unit of length it feeds, the radius at a node follows from the skeleton below
 // it: r^n is proportional to W = (length of the subtree) + (tips below) x tip_length, which adds up
-// exactly at forks and tapers along a branch. One measured radius sets the constant: the MSAC
-// trunk cylinder at the middle of its fitted stretch.
+// exactly at forks and tapers along a branch. One measured radius sets the constant: the trunk's,
+// from its MSAC cylinder, at the middle of the cylinder's stretch.
 //
 // Local fits: around each node the points near it (the node and its neighbours along the chain)
 // are projected on the plane across the branch and a circle is fitted to them, centre free. A fit
@@ -28,18 +28,20 @@
 namespace simtree::reconstruction {
 
 struct RadiusOptions {
-  double pipe_exponent = 2.5;  // n in r_parent^n = sum r_child^n
-  double tip_length_m = 0.05;  // length a tip is taken to feed beyond its last node
-  double min_radius_m = 0.002;
-  // Local fits (off when `local_fits` is false or no points are given).
-  bool local_fits = true;
-  bool recenter_on_fits = true;
-  int fit_min_points = 10;
-  double fit_min_arc_rad = 2.6;            // ~150 degrees of the circle holds points
-  double fit_max_residual = 0.25;          // RMS distance from the circle, in radii...
+  double pipe_exponent = 2.5;      // n in r_parent^n = sum r_child^n
+  double tip_length_m = 0.05;      // metres a tip is taken to feed beyond its last node
+  double min_radius_m = 0.002;     // metres, the thinnest radius given
+  bool local_fits = true;          // circle fits correct the radii (also off without points)
+  bool recenter_on_fits = true;    // a node with a counting fit moves onto its centre
+  int fit_min_points = 10;         // points a fit needs
+  double fit_min_arc_rad = 2.6;    // radians of the circle holding points (~150 degrees)
+  double fit_max_residual = 0.25;  // RMS distance from the circle, in radii...
   double fit_min_radius_over_noise = 2.0;  // ... and fitted radius >= this x the roughness
   double fit_max_ratio = 3.0;              // fitted within [1/x, x] of the allometric radius
   double max_correction = 3.0;             // a chain's ratio is clamped to [1/max, max]
+
+  // Throws OptionError naming the first field out of range.
+  void Validate() const;
 };
 
 struct RadiusStats {

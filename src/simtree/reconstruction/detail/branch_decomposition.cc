@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "simtree/core/frames.h"
+#include "simtree/reconstruction/detail/option_checks.h"
 
 namespace simtree::reconstruction {
 namespace {
@@ -23,8 +24,14 @@ Eigen::Vector3d PathDirection(const Skeleton& skeleton,
 
 }  // namespace
 
+void BranchDecompositionOptions::Validate() const {
+  CheckNonNegative("comparable_share", comparable_share);
+  CheckAtLeast("straightness_nodes", straightness_nodes, 1);
+}
+
 Tree DecomposeIntoBranches(const Skeleton& skeleton, const BranchDecompositionOptions& options,
                            const std::string& source) {
+  options.Validate();
   Tree tree;
   tree.metadata.source = source;
   if (skeleton.size() < 2) return tree;

@@ -13,10 +13,14 @@
 namespace simtree::reconstruction {
 
 struct BranchDecompositionOptions {
-  // A child whose subtree is at least this share of the largest competes on straightness.
+  // A child whose subtree is at least this share of the largest competes on straightness (above
+  // 1: the heaviest child always continues).
   double comparable_share = 0.7;
   // Nodes (after the fork) over which a path's direction is measured for straightness.
   int straightness_nodes = 4;
+
+  // Throws OptionError naming the first field out of range.
+  void Validate() const;
 };
 
 // The tree (ids in depth-first order, levels and frames set). Every branch has at least two

@@ -9,6 +9,7 @@
 #include <spdlog/spdlog.h>
 
 #include "simtree/core/error.h"
+#include "simtree/reconstruction/detail/option_checks.h"
 
 namespace simtree::reconstruction {
 namespace {
@@ -64,15 +65,22 @@ Eigen::Vector3d TrimmedExtent(std::span<const Eigen::Vector3d> points, double tr
   return extent;
 }
 
+void CloudPreparationOptions::Validate() const {
+  CheckPositive("scale", scale);
+  CheckNonNegative("duplicate_tolerance_m", duplicate_tolerance_m);
+  CheckPositive("max_height_m", max_height_m);
+  CheckNonNegative("min_height_m", min_height_m);
+  CheckOrdered("min_height_m", min_height_m, "max_height_m", max_height_m);
+  CheckNonNegative("min_height_to_width", min_height_to_width);
+  CheckWithin("extent_trim", extent_trim, 0.0, 0.5);
+}
+
 PreparedCloud PrepareCloud(std::span<const Eigen::Vector3d> points, const std::string& source,
                            const CloudPreparationOptions& options) {
+  options.Validate();
   PreparedCloud out;
   out.input_points = points.size();
   if (points.empty()) throw InputError(source, "", "the cloud has no points");
-  if (!(options.scale > 0.0) || !std::isfinite(options.scale)) {
-    throw InputError(source, "scale",
-                     fmt::format("expected a positive scale, got {}", options.scale));
-  }
   auto warn = [&](std::string message) {
     spdlog::warn("{}: {}", source, message);
     out.warnings.push_back(std::move(message));

@@ -13,18 +13,17 @@
 namespace simtree::reconstruction {
 
 struct CloudPreparationOptions {
-  // Coordinates are multiplied by this first (0.001 reads a cloud in millimetres).
-  double scale = 1.0;
-  // Points closer than this to an earlier point are duplicates (metres, after scaling).
-  double duplicate_tolerance_m = 1e-6;
-  // A cloud taller than this is refused as not being in metres (the tallest trees are ~115 m; a
-  // tree scanned by one RGB-D camera is 1-20 m).
+  double scale = 1.0;  // coordinates are multiplied by this first (0.001 reads millimetres)
+  double duplicate_tolerance_m = 1e-6;  // metres (after scaling) within which a point repeats one
+  // Metres: a taller cloud is refused as not in metres (the tallest trees are ~115 m; a tree
+  // scanned by one RGB-D camera is 1-20 m).
   double max_height_m = 60.0;
-  // A standing tree: at least this tall, and at least `min_height_to_width` of its width.
-  double min_height_m = 0.2;
-  double min_height_to_width = 0.2;
-  // Share of points ignored at each end when measuring extents (stray outliers).
-  double extent_trim = 0.002;
+  double min_height_m = 0.2;         // metres: a standing tree is at least this tall...
+  double min_height_to_width = 0.2;  // ... and at least this share of its width tall
+  double extent_trim = 0.002;        // share of points ignored at each end of an extent (strays)
+
+  // Throws OptionError naming the first field out of range.
+  void Validate() const;
 };
 
 struct PreparedCloud {
@@ -38,7 +37,7 @@ struct PreparedCloud {
 
 // Throws InputError naming `source` for an empty cloud, one with no finite point, a cloud that
 // is not in metres (saying which unit it looks like and the --scale that fixes it) and a cloud
-// with no vertical structure.
+// with no vertical structure; OptionError for invalid options.
 PreparedCloud PrepareCloud(std::span<const Eigen::Vector3d> points, const std::string& source,
                            const CloudPreparationOptions& options = {});
 

@@ -10,11 +10,20 @@
 
 #include "simtree/core/statistics.h"
 #include "simtree/reconstruction/detail/local_geometry.h"
+#include "simtree/reconstruction/detail/option_checks.h"
 #include "simtree/reconstruction/detail/point_index.h"
 
 namespace simtree::reconstruction {
+
+void CloudScaleOptions::Validate() const {
+  CheckAtLeast("samples", samples, 1);
+  CheckAtLeast("max_indexed_points", static_cast<int64_t>(max_indexed_points), 3);
+  CheckAtLeast("noise_neighbours", noise_neighbours, 3);
+}
+
 CloudScale MeasureCloudScale(std::span<const Eigen::Vector3d> all_points,
                              const CloudScaleOptions& options) {
+  options.Validate();
   CloudScale scale;
   if (all_points.size() < 3) return scale;
   std::mt19937_64 rng(options.seed);

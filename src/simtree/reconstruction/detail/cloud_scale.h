@@ -12,10 +12,13 @@
 namespace simtree::reconstruction {
 
 struct CloudScaleOptions {
-  int samples = 3000;  // points measured (all when the cloud is smaller)
-  size_t max_indexed_points = 100000;
-  int noise_neighbours = 12;  // neighbourhood of the roughness fit
-  uint64_t seed = 1;
+  int samples = 3000;                  // points measured (all when the cloud is smaller)
+  size_t max_indexed_points = 100000;  // a larger cloud is subsampled to this many first
+  int noise_neighbours = 12;           // points in the neighbourhood of a roughness plane fit
+  uint64_t seed = 1;                   // of the sample
+
+  // Throws OptionError naming the first field out of range.
+  void Validate() const;
 };
 
 struct CloudScale {

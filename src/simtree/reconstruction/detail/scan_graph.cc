@@ -9,6 +9,8 @@
 #include <tuple>
 #include <unordered_map>
 
+#include "simtree/reconstruction/detail/option_checks.h"
+
 namespace simtree::reconstruction {
 namespace {
 
@@ -41,8 +43,16 @@ struct Link {
 
 }  // namespace
 
+void ScanGraphOptions::Validate() const {
+  CheckPositive("neighbour_radius_m", neighbour_radius_m);
+  CheckAtLeast("max_neighbours", max_neighbours, 1);
+  CheckNonNegative("max_gap_m", max_gap_m);
+  CheckAtLeast("min_piece_points", min_piece_points, 1);
+}
+
 ScanGraph BuildScanGraph(std::span<const Eigen::Vector3d> points, const PointIndex& index,
                          const ScanGraphOptions& options) {
+  options.Validate();
   const int n = static_cast<int>(points.size());
   ScanGraph graph;
   // Nearest-neighbour relations are not symmetric: collect undirected links, once each.

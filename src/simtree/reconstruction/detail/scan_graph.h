@@ -14,10 +14,13 @@
 namespace simtree::reconstruction {
 
 struct ScanGraphOptions {
-  double neighbour_radius_m = 0.02;  // points closer than this are linked
-  int max_neighbours = 10;           // per point (the nearest ones)
-  double max_gap_m = 0.2;            // longest occlusion gap bridged (0: none)
+  double neighbour_radius_m = 0.02;  // metres: points closer than this are linked
+  int max_neighbours = 10;           // links per point (to the nearest ones)
+  double max_gap_m = 0.2;            // metres, the longest occlusion gap bridged (0: none)
   int min_piece_points = 4;          // smaller pieces are outliers: never bridged
+
+  // Throws OptionError naming the first field out of range.
+  void Validate() const;
 };
 
 struct ScanGraph {

@@ -5,6 +5,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "simtree/reconstruction/detail/option_checks.h"
 #include "simtree/reconstruction/detail/point_index.h"
 
 namespace simtree::reconstruction {
@@ -20,8 +21,19 @@ int FindRoot(std::vector<int>& parent, int i) {
 
 }  // namespace
 
+void SparseReturnOptions::Validate() const {
+  CheckPositive("radius_m", radius_m);
+  CheckAtLeast("min_neighbours", min_neighbours, 0);
+}
+
+void GroundObjectOptions::Validate() const {
+  CheckPositive("neighbour_radius_m", neighbour_radius_m);
+  CheckNonNegative("touch_height_m", touch_height_m);
+}
+
 std::vector<char> FindSparseReturns(std::span<const Eigen::Vector3d> points,
                                     const SparseReturnOptions& options) {
+  options.Validate();
   std::vector<char> sparse(points.size(), 0);
   if (points.empty()) return sparse;
   const PointIndex index(points);
@@ -42,6 +54,7 @@ std::vector<char> FindSparseReturns(std::span<const Eigen::Vector3d> points,
 std::vector<char> FindObjectsOnGround(std::span<const Eigen::Vector3d> points,
                                       const GroundPlane& ground,
                                       const GroundObjectOptions& options) {
+  options.Validate();
   std::vector<char> object(points.size(), 0);
   if (points.empty() || !ground.found) return object;
   const PointIndex index(points);

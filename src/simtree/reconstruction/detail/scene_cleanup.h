@@ -14,8 +14,11 @@
 namespace simtree::reconstruction {
 
 struct SparseReturnOptions {
-  double radius_m = 0.01;  // neighbourhood searched
+  double radius_m = 0.01;  // metres, the neighbourhood searched
   int min_neighbours = 6;  // a measured surface has at least this many points that near
+
+  // Throws OptionError naming the first field out of range.
+  void Validate() const;
 };
 
 // Per point: 1 when fewer than `min_neighbours` other points lie within `radius_m`.
@@ -23,8 +26,11 @@ std::vector<char> FindSparseReturns(std::span<const Eigen::Vector3d> points,
                                     const SparseReturnOptions& options = {});
 
 struct GroundObjectOptions {
-  double neighbour_radius_m = 0.02;  // points closer than this are one object
-  double touch_height_m = 0.05;      // an object reaching this close to the ground stands on it
+  double neighbour_radius_m = 0.02;  // metres: points closer than this are one object
+  double touch_height_m = 0.05;  // metres: an object reaching this close to the ground stands on it
+
+  // Throws OptionError naming the first field out of range.
+  void Validate() const;
 };
 
 // Per point: 1 when it belongs to a connected piece (links up to neighbour_radius_m) that stands

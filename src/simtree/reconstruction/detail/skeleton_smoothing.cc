@@ -2,9 +2,17 @@
 
 #include <vector>
 
+#include "simtree/reconstruction/detail/option_checks.h"
+
 namespace simtree::reconstruction {
 
+void SkeletonSmoothingOptions::Validate() const {
+  CheckAtLeast("iterations", iterations, 0);
+  CheckShare("weight", weight);
+}
+
 void SmoothSkeleton(Skeleton& skeleton, const SkeletonSmoothingOptions& options) {
+  options.Validate();
   if (options.iterations <= 0 || skeleton.size() < 3) return;
   const std::vector<SkeletonChain> chains = SkeletonChains(skeleton);
   std::vector<Eigen::Vector3d> next;

@@ -8,8 +8,11 @@
 namespace simtree::reconstruction {
 
 struct SkeletonSmoothingOptions {
-  int iterations = 2;   // 0: off
-  double weight = 0.5;  // how far a node moves towards the mean of its two neighbours per round
+  int iterations = 2;   // rounds (0: off)
+  double weight = 0.5;  // share of the way to the mean of its two neighbours a node moves a round
+
+  // Throws OptionError naming the first field out of range.
+  void Validate() const;
 };
 
 void SmoothSkeleton(Skeleton& skeleton, const SkeletonSmoothingOptions& options);

@@ -3,12 +3,22 @@
 #include <algorithm>
 #include <cmath>
 
+#include "simtree/reconstruction/detail/option_checks.h"
 #include "simtree/reconstruction/detail/point_index.h"
 
 namespace simtree::reconstruction {
 
+void TwigPruningOptions::Validate() const {
+  CheckNonNegative("min_support", min_support);
+  CheckNonNegative("min_support_per_m", min_support_per_m);
+  CheckNonNegative("min_length_m", min_length_m);
+  CheckNonNegative("min_length_per_thickness", min_length_per_thickness);
+  CheckAtLeast("passes", passes, 0);
+}
+
 Skeleton PruneTwigs(const Skeleton& skeleton, const TwigPruningOptions& options,
                     TwigPruningStats* stats) {
+  options.Validate();
   TwigPruningStats local;
   TwigPruningStats& s = stats ? *stats : local;
   s = {};

@@ -13,14 +13,21 @@ namespace simtree::reconstruction {
 struct TwigPruningOptions {
   double min_support = 6.0;               // scan points a twig must explain...
   double min_support_per_m = 0.0;         // ... and this many per metre of its length (0: off)
-  double min_length_m = 0.0;              // shorter twigs are removed
+  double min_length_m = 0.0;              // metres: shorter twigs are removed
   double min_length_per_thickness = 1.5;  // x the thickness where the twig starts; 0: off
   int passes = 3;                         // pruning can expose new twigs; repeat this often
+
+  // Throws OptionError naming the first field out of range.
+  void Validate() const;
 };
 
 struct TwigPruningStats {
   int twigs_removed = 0;
   int nodes_removed = 0;
+
+  TwigPruningStats operator+(const TwigPruningStats& other) const {
+    return {twigs_removed + other.twigs_removed, nodes_removed + other.nodes_removed};
+  }
 };
 
 Skeleton PruneTwigs(const Skeleton& skeleton, const TwigPruningOptions& options,
