@@ -15,12 +15,15 @@
 namespace simtree::reconstruction {
 
 struct GeodesicSampleOptions {
-  double band_width_m = 0.02;  // geodesic width of a band
-  int min_points = 1;          // smaller pieces are dropped as outliers
+  double band_width_m = 0.02;  // metres, the geodesic width of a band
+  int min_points = 1;          // points a piece needs; smaller pieces are dropped as outliers
   // Pieces of one band whose centroids are closer than this times the sum of their spreads are
   // one piece: the arcs a ring breaks into where part of a branch was hidden, or where the band
   // crosses a leaning branch obliquely. 0 turns merging off.
   double merge_per_spread = 0.9;
+
+  // Throws OptionError naming the first field out of range.
+  void Validate() const;
 };
 
 struct GeodesicSample {
