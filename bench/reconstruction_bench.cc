@@ -3,7 +3,7 @@
 // the output.
 //
 //   bench_reconstruction                    timings: the three real scans, a 200,000-point cloud
-//   bench_reconstruction --tables           stand-in accuracy (trees x noise x seeds) + ablation
+//   bench_reconstruction --tables           stand-in accuracy (trees x noise x seeds)
 //   bench_reconstruction --real             the real scans: fit, branch counts, time
 //   bench_reconstruction --ablation [NAME]  each improvement switched off in turn (or only those
 //                                           whose name contains NAME)
@@ -196,10 +196,11 @@ std::vector<Variant> Variants() {
     o.colonization.kill_per_thickness = 0.0;
     o.colonization.kill_per_node_thickness = 0.0;
   });
-  add("no geodesic consistency",
-      [](reconstruction::ReconstructionOptions& o) { o.colonization.geodesic_slack_m = -1.0; });
+  add("no geodesic consistency", [](reconstruction::ReconstructionOptions& o) {
+    o.colonization.geodesic_consistency = false;
+  });
   add("no gap bridging", [](reconstruction::ReconstructionOptions& o) {
-    o.colonization.bridge_gap_m = 0.0;
+    o.colonization.bridge_gaps = false;
     o.scale.max_gap_m = 1e-3;
   });
   add("no recentring",
@@ -455,7 +456,7 @@ int main(int argc, char** argv) {
     }
     if (std::strcmp(argv[i], "--synth") == 0) {
       std::string pictures;
-      simtree::ReconstructionOptions options;
+      simtree::reconstruction::ReconstructionOptions options;
       std::vector<std::string> captures;
       for (int j = i + 1; j < argc; ++j) {
         if (std::strcmp(argv[j], "--pictures") == 0 && j + 1 < argc) {

@@ -4,6 +4,7 @@
 #include "simtree/reconstruction/reconstruct.h"
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <random>
 
@@ -97,7 +98,8 @@ TEST(Reconstruct, ATreeForkingLowFindsItsTrunkBelowTheFork) {
   const std::vector<Eigen::Vector3d> points = test::ScanLikeAKinect(tree).points;
   const ReconstructionResult r = ReconstructTree(points, "low fork");
   ASSERT_TRUE(r.trunk.found) << r.trunk.note;
-  EXPECT_THAT(r.trunk.note, HasSubstr("fitted on the lowest"));
+  EXPECT_EQ(r.trunk_stretch, TrunkStretch::kBelowFork) << r.trunk.note;
+  EXPECT_LT(r.trunk_stretch_m, 0.5) << r.trunk.note;
   EXPECT_NEAR(r.trunk.cylinder.radius, 0.043, 0.1 * 0.043) << r.trunk.note;
   EXPECT_LT(std::acos(std::min(1.0, r.trunk.cylinder.axis.z())), 0.05) << r.trunk.note;
   const eval::TruthScores s = eval::ScoreAgainstTruth(r.tree, tree);
@@ -168,6 +170,47 @@ TEST(Reconstruct, DegenerateCloudsNeverCrash) {
       EXPECT_THAT(std::string(e.what()), HasSubstr("cloud")) << "cloud " << c;
     }
   }
+}
+
+// One nonsense value per family of options: refused by name before the points are looked at (an
+// empty cloud would say so otherwise).
+TEST(Reconstruct, NonsenseOptionsAreRefusedByName) {
+  auto message = [](const std::function<void(ReconstructionOptions&)>& change) {
+    ReconstructionOptions options;
+    change(options);
+    try {
+      ReconstructTree({}, "cloud.ply", options);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(message([](auto& o) { o.preparation.scale = 0.0; }),
+            "options: preparation.scale: expected > 0, got 0");
+  EXPECT_EQ(message([](auto& o) { o.scale.voxel_m = -0.01; }),
+            "options: scale.voxel_m: expected >= 0, got -0.01");
+  EXPECT_EQ(message([](auto& o) { o.max_working_points = 0; }),
+            "options: max_working_points: expected >= 1, got 0");
+  EXPECT_EQ(message([](auto& o) { o.ground.search_share = 1.5; }),
+            "options: ground.search_share: expected within [0, 1], got 1.5");
+  EXPECT_EQ(message([](auto& o) { o.trunk.slices = 0; }),
+            "options: trunk.slices: expected >= 1, got 0");
+  EXPECT_EQ(message([](auto& o) { o.trunk.max_radius_m = 0.001; }),
+            "options: trunk.max_radius_m: expected >= min_radius_m (0.004), got 0.001");
+  EXPECT_EQ(message([](auto& o) { o.trunk_fit_max_m = 0.1; }),
+            "options: trunk_fit_max_m: expected >= trunk_fit_min_m (0.3), got 0.1");
+  EXPECT_EQ(message([&](auto& o) { o.colonization.direction_smoothing = nan; }),
+            "options: colonization.direction_smoothing: expected within [0, 1], got nan");
+  EXPECT_EQ(message([](auto& o) { o.pruning.passes = -1; }),
+            "options: pruning.passes: expected >= 0, got -1");
+  EXPECT_EQ(message([](auto& o) { o.smoothing.weight = 2.0; }),
+            "options: smoothing.weight: expected within [0, 1], got 2");
+  EXPECT_EQ(message([](auto& o) { o.radii.max_correction = 0.5; }),
+            "options: radii.max_correction: expected >= 1, got 0.5");
+  EXPECT_EQ(message([](auto& o) { o.branches.comparable_share = -0.1; }),
+            "options: branches.comparable_share: expected >= 0, got -0.1");
+  EXPECT_EQ(message([](auto&) {}), "cloud.ply: the cloud has no points");
 }
 
 TEST(Reconstruct, AScannedGroundIsFoundAndLeftOut) {

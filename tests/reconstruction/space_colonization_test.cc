@@ -17,15 +17,11 @@ void AddLine(std::vector<AttractionPoint>& points, const Eigen::Vector3d& a,
   }
 }
 
-ColonizationOptions Options() {
-  ColonizationOptions o;
-  o.step_m = 0.02;
-  o.influence_radius_m = 0.08;
-  o.kill_radius_m = 0.03;
-  o.geodesic_slack_m = 0.05;
-  o.bridge_gap_m = 0.25;
-  return o;
-}
+const ColonizationLengths kLengths{.step_m = 0.02,
+                                   .influence_radius_m = 0.08,
+                                   .kill_radius_m = 0.03,
+                                   .geodesic_slack_m = 0.05,
+                                   .bridge_gap_m = 0.25};
 
 // Distance from p to the nearest node.
 double NearestNode(const Skeleton& s, const Eigen::Vector3d& p) {
@@ -40,7 +36,7 @@ TEST(SpaceColonization, GrowsThroughAYAndForksOnce) {
   AddLine(points, {0, 0, 1}, {0.5, 0, 1.5}, 1.0);
   AddLine(points, {0, 0, 1}, {-0.4, 0, 1.6}, 1.0);
   ColonizationStats stats;
-  const Skeleton s = GrowByColonization(points, {0, 0, 0}, {0, 0, 1}, Options(), &stats);
+  const Skeleton s = GrowByColonization(points, {0, 0, 0}, {0, 0, 1}, kLengths, {}, &stats);
   EXPECT_EQ(stats.unreached_weight, 0.0);
   EXPECT_EQ(stats.stuck_weight, 0.0);
   EXPECT_NEAR(stats.reached_weight, 5.0 * points.size(), 1e-9);
@@ -61,13 +57,13 @@ TEST(SpaceColonization, ThePerceptionConeKeepsGrowthFromTurningBack) {
   // Points only below a root that faces up.
   std::vector<AttractionPoint> points;
   AddLine(points, {0, 0, -0.02}, {0, 0, -0.5}, 0.0);
-  ColonizationOptions o = Options();
-  o.geodesic_slack_m = -1.0;  // test the cone alone
-  o.bridge_gap_m = 0.0;
-  const Skeleton coned = GrowByColonization(points, {0, 0, 0}, {0, 0, 1}, o);
+  ColonizationOptions o;
+  o.geodesic_consistency = false;  // test the cone alone
+  o.bridge_gaps = false;
+  const Skeleton coned = GrowByColonization(points, {0, 0, 0}, {0, 0, 1}, kLengths, o);
   EXPECT_EQ(coned.size(), 1);
   o.perception_half_angle_rad = 4.0;  // no cone: it grows down
-  const Skeleton both = GrowByColonization(points, {0, 0, 0}, {0, 0, 1}, o);
+  const Skeleton both = GrowByColonization(points, {0, 0, 0}, {0, 0, 1}, kLengths, o);
   double lowest = 0;
   for (const SkeletonNode& n : both.nodes) lowest = std::min(lowest, n.position.z());
   EXPECT_LT(lowest, -0.45);
@@ -80,7 +76,7 @@ TEST(SpaceColonization, GeodesicsKeepABranchFromJumpingToItsNeighbour) {
   AddLine(points, {0, 0, 0}, {0.3, 0, 0}, 0.0);
   AddLine(points, {0.3, 0, 0}, {0.3, 0, 0.3}, 0.3);
   AddLine(points, {0.3, 0, 0.3}, {0.06, 0, 0.6}, 0.6);  // comes back near the first stem
-  const Skeleton s = GrowByColonization(points, {0, 0, 0}, {0, 0, 1}, Options());
+  const Skeleton s = GrowByColonization(points, {0, 0, 0}, {0, 0, 1}, kLengths);
   // No edge may join the stems across the 6 cm where they pass close.
   for (int i = 1; i < s.size(); ++i) {
     const Eigen::Vector3d& a = s.nodes[i].position;
@@ -96,21 +92,20 @@ TEST(SpaceColonization, BridgesAnOcclusionGapOnlyWhenAllowed) {
   AddLine(points, {0, 0, 0}, {0, 0, 0.5}, 0.0);
   AddLine(points, {0, 0, 0.7}, {0, 0, 1.2}, 0.7);  // 20 cm hidden
   ColonizationStats bridged;
-  const Skeleton with = GrowByColonization(points, {0, 0, 0}, {0, 0, 1}, Options(), &bridged);
+  const Skeleton with = GrowByColonization(points, {0, 0, 0}, {0, 0, 1}, kLengths, {}, &bridged);
   EXPECT_GE(bridged.bridges, 1);
   EXPECT_EQ(bridged.unreached_weight, 0.0);
   EXPECT_LT(NearestNode(with, {0, 0, 1.2}), 0.03);
-  ColonizationOptions o = Options();
-  o.bridge_gap_m = 0.0;
   ColonizationStats cut;
-  const Skeleton without = GrowByColonization(points, {0, 0, 0}, {0, 0, 1}, o, &cut);
+  const Skeleton without =
+      GrowByColonization(points, {0, 0, 0}, {0, 0, 1}, kLengths, {.bridge_gaps = false}, &cut);
   EXPECT_EQ(cut.bridges, 0);
   EXPECT_GT(cut.unreached_weight, 0.0);
   EXPECT_GT(NearestNode(without, {0, 0, 1.2}), 0.4);
 }
 
 TEST(SpaceColonization, NoPointsGiveJustTheRoot) {
-  const Skeleton s = GrowByColonization({}, {1, 2, 3}, {0, 0, 1}, Options());
+  const Skeleton s = GrowByColonization({}, {1, 2, 3}, {0, 0, 1}, kLengths);
   ASSERT_EQ(s.size(), 1);
   EXPECT_TRUE(s.nodes[0].position.isApprox(Eigen::Vector3d(1, 2, 3)));
 }

@@ -23,7 +23,7 @@ std::vector<Eigen::Vector3d> LeaningTrunk(const Eigen::Vector3d& axis) {
 TEST(TrunkCylinder, MsacFindsRadiusAndAxisDespiteNoiseAndOutliers) {
   const Eigen::Vector3d axis =
       Eigen::Vector3d(std::sin(DegToRad(10)), 0, std::cos(DegToRad(10))).normalized();
-  const TrunkFit fit = FitTrunkCylinder(LeaningTrunk(axis), 1.0, {.inlier_threshold_m = 0.008});
+  const TrunkFit fit = FitTrunkCylinder(LeaningTrunk(axis), 1.0, 0.008);
   ASSERT_TRUE(fit.found) << fit.note;
   EXPECT_NEAR(fit.cylinder.radius, 0.12, 0.12 * 0.03);
   EXPECT_GT(std::abs(fit.cylinder.axis.dot(axis)), std::cos(DegToRad(2)));
@@ -43,7 +43,7 @@ TEST(TrunkCylinder, AForkAboveShortensTheFitToTheSlicesThatAgree) {
     const auto stem = test::CylinderPoints({x, 0, 0.6}, {0, 0, 1}, 0.4, 0.07, 0.01, 0.002);
     points.insert(points.end(), stem.begin(), stem.end());
   }
-  const TrunkFit fit = FitTrunkCylinder(points, 0.0, {.inlier_threshold_m = 0.006});
+  const TrunkFit fit = FitTrunkCylinder(points, 0.0, 0.006);
   ASSERT_TRUE(fit.found) << fit.note;
   EXPECT_NEAR(fit.cylinder.radius, 0.1, 0.005);
   std::string slices;
@@ -64,7 +64,7 @@ TEST(TrunkCylinder, AThinTrunkBlurredAsWideAsItsRadiusIsRebuiltFromTheSliceCircl
   std::mt19937_64 rng(3);
   std::normal_distribution<double> gauss(0.0, 0.01);
   for (Eigen::Vector3d& p : points) p += Eigen::Vector3d(gauss(rng), gauss(rng), gauss(rng));
-  const TrunkFit fit = FitTrunkCylinder(points, 0.0, {.inlier_threshold_m = 0.009});
+  const TrunkFit fit = FitTrunkCylinder(points, 0.0, 0.009);
   ASSERT_TRUE(fit.found) << fit.note;
   EXPECT_NEAR(fit.cylinder.radius, 0.026, 0.026 * 0.1) << fit.note;
   EXPECT_NEAR(fit.slice_radius_m, 0.026, 0.026 * 0.1);
@@ -98,12 +98,12 @@ TEST(TrunkCylinder, RobustCircleIgnoresABranchBesideTheTrunk) {
 
 TEST(TrunkCylinder, TooFewPointsOrNoCylinderIsSaid) {
   const std::vector<Eigen::Vector3d> few = {{0, 0, 0}, {0, 0, 1}};
-  const TrunkFit none = FitTrunkCylinder(few, 0.0);
+  const TrunkFit none = FitTrunkCylinder(few, 0.0, 0.01);
   EXPECT_FALSE(none.found);
   EXPECT_NE(none.note.find("too few"), std::string::npos);
   // A horizontal log is no trunk (beyond the tilt limit).
   const auto log = test::CylinderPoints({0, 0, 0}, {1, 0, 0}, 1.0, 0.1, 0.01);
-  EXPECT_FALSE(FitTrunkCylinder(log, 0.0).found);
+  EXPECT_FALSE(FitTrunkCylinder(log, 0.0, 0.01).found);
 }
 
 TEST(TrunkCylinder, CircleFitRecoversAPartialArc) {

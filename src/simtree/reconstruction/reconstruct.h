@@ -1,21 +1,23 @@
 #pragma once
 // Static tree reconstruction (paper Section III-B): from a registered point cloud to a complete
-// simtree tree with a branch hierarchy and radii.
+// simtree tree with a branch hierarchy and radii. ReconstructTree runs these steps in order
+// (helpers in detail/):
 //
-//   checks (NaN, duplicates, units, shape)  -> cloud_preparation.h
-//   spacing and roughness, working voxels    -> cloud_scale.h
-//   ground plane (when scanned) and base     -> ground_plane.h
-//   neighbour graph, gap bridges, geodesics  -> scan_graph.h
-//   trunk cylinder by MSAC + slice check     -> trunk_cylinder.h
-//   medial samples along geodesic bands      -> geodesic_samples.h
-//   improved space colonization              -> space_colonization.h
-//   twig pruning, smoothing                  -> twig_pruning.h, skeleton_smoothing.h
-//   allometric radii with local fits         -> allometric_radii.h
-//   branch hierarchy                         -> branch_decomposition.h
+//   prepare the cloud: NaN, duplicates, units, shape  -> cloud_preparation.h
+//   measure its scale: spacing, roughness              -> cloud_scale.h
+//   ground (when scanned) and the scene on it          -> ground_plane.h, scene_cleanup.h
+//   working voxels                                     -> voxel_grid.h
+//   scan graph: neighbours, gap bridges, geodesics     -> scan_graph.h
+//   trunk cylinder by MSAC + slice check               -> trunk_cylinder.h
+//   medial samples along geodesic bands                -> geodesic_samples.h
+//   improved space colonization                        -> space_colonization.h
+//   twig pruning, smoothing                            -> twig_pruning.h, skeleton_smoothing.h
+//   allometric radii with local fits                   -> allometric_radii.h
+//   branch decomposition                               -> branch_decomposition.h
 //
-// Every length the stages use is derived from the measured point spacing and roughness unless it
-// is set here (a value of 0 means "derive it"); ReconstructionResult::parameters reports the
-// values used. docs/reconstruction.md explains each choice and measures each improvement.
+// Every length the steps use is derived from the measured point spacing and roughness unless it
+// is set in ReconstructionOptions::scale (0 means "derive it"); ReconstructionResult::parameters
+// reports the values used. docs/reconstruction.md explains each choice.
 //
 // Usage:
 //   const std::vector<Eigen::Vector3d> points = ...;  // the merged cloud, metres, Z up
@@ -35,6 +37,7 @@
 #include "simtree/reconstruction/detail/cloud_preparation.h"
 #include "simtree/reconstruction/detail/cloud_scale.h"
 #include "simtree/reconstruction/detail/ground_plane.h"
+#include "simtree/reconstruction/detail/option_checks.h"
 #include "simtree/reconstruction/detail/scene_cleanup.h"
 #include "simtree/reconstruction/detail/skeleton.h"
 #include "simtree/reconstruction/detail/skeleton_smoothing.h"
@@ -44,7 +47,7 @@
 
 namespace simtree::reconstruction {
 
-// The lengths the stages run at. 0 in ReconstructionOptions means: derive from the cloud.
+// The lengths the steps run at (metres). In ReconstructionOptions, 0 means: derive from the cloud.
 struct ReconstructionScale {
   double voxel_m = 0.0;             // working resolution (points are averaged per voxel)
   double neighbour_radius_m = 0.0;  // neighbour graph links
@@ -52,49 +55,61 @@ struct ReconstructionScale {
   double step_m = 0.0;              // colonization step
   double influence_radius_m = 0.0;  // colonization perception
   double kill_radius_m = 0.0;       // colonization reach
-  double max_gap_m = 0.0;           // occlusion gaps bridged
-  double trunk_threshold_m = 0.0;   // MSAC inlier distance
+  double max_gap_m = 0.0;           // occlusion gaps bridged (graph and colonization)
+  double trunk_threshold_m = 0.0;   // MSAC inlier distance of the trunk cylinder
+
+  // Throws OptionError for a negative or non-finite length.
+  void Validate() const;
 };
 
 struct ReconstructionOptions {
-  CloudPreparationOptions preparation;
-  ReconstructionScale scale;       // zeros: derived (see DeriveScale)
-  int max_working_points = 60000;  // a coarser voxel is used above this
-  bool remove_ground = true;
-  GroundOptions ground;
+  CloudPreparationOptions preparation;  // input checks, units
+  ReconstructionScale scale;            // zeros: derived from the cloud (DeriveScale)
+  int max_working_points = 60000;       // working points at most (a coarser voxel above)
+  bool remove_ground = true;            // look for a ground plane and leave it out
+  GroundOptions ground;  // the ground search; its tolerance is at least scale.trunk_threshold_m
   // With ground found (a scene, not a segmented tree): sparse returns and the objects standing
   // on the ground apart from the tree are removed (scene_cleanup.h).
   bool clean_scene = true;
-  TrunkFitOptions trunk;  // inlier_threshold_m is overwritten by scale.trunk_threshold_m
-  // The trunk stretch fitted: this share of the tree's height, within [min, max] metres.
-  double trunk_fit_share = 0.25;
-  double trunk_fit_min_m = 0.3;
-  double trunk_fit_max_m = 1.3;
+  TrunkFitOptions trunk;          // the trunk cylinder (its MSAC band: scale.trunk_threshold_m)
+  double trunk_fit_share = 0.25;  // share of the tree's height the trunk is fitted on...
+  double trunk_fit_min_m = 0.3;   // ... in metres at least...
+  double trunk_fit_max_m = 1.3;   // ... and at most
   // Attraction points: medial samples of geodesic bands (true) or the working points themselves.
   bool medial_samples = true;
   // Arcs of one band merged into rings (geodesic_samples.h); 0 turns merging off.
   double merge_per_spread = 0.9;
-  // Colonization; its step, radii and gap are overwritten by `scale`.
-  ColonizationOptions colonization;
-  bool prune = true;
+  ColonizationOptions colonization;  // its lengths come from `scale`
+  bool prune = true;                 // twig pruning, before and after the radii
+  // min_support_per_m 0: a quarter of the median attraction point's weight per band width.
   TwigPruningOptions pruning;
   SkeletonSmoothingOptions smoothing;
   bool snap_trunk_to_cylinder = true;  // trunk nodes within the fitted stretch onto its axis
-  // Anchor the radii on the median radius of the slice circles along the MSAC cylinder (default)
-  // or on the cylinder's own radius (false, the paper's). On synth's Kinect captures the slices
-  // are the better measurement (trunk radius error 4.2% against 8.9%, 3 species x 3 seeds); on
-  // the stand-in and real scans the two tie (docs/reconstruction.md).
+  // Anchor the radii on the median radius of the slice circles along the MSAC cylinder (true) or
+  // on the cylinder's own radius (false, the paper's): on synth's thin, noisy trunks the slices
+  // are the better measurement (docs/reconstruction.md).
   bool anchor_on_slices = true;
-  // Fit the trunk again on the cloud's own points of the trunk stretch (true) rather than only on
-  // the working voxel means (false) when the first fit's radius is under this many working voxels:
-  // voxels as wide as the depth noise widen a thin trunk's blurred ring.
+  // Fit the trunk again on the cloud's own points of the trunk stretch when the first fit's
+  // radius is under trunk_voxels_for_full_cloud working voxels: voxels as wide as the depth noise
+  // widen a thin trunk's blurred ring.
   bool trunk_on_full_cloud = true;
-  double trunk_voxels_for_full_cloud = 4.0;
+  double trunk_voxels_for_full_cloud = 4.0;  // working voxels
   RadiusOptions radii;
   BranchDecompositionOptions branches;
-  uint64_t seed = 1;
+  uint64_t seed = 1;  // of every random choice: scale sample, ground RANSAC, trunk MSAC
+
+  // Throws OptionError naming the first field out of range ("trunk.slices").
+  void Validate() const;
 };
 
+// Which stretch of the trunk its cylinder was fitted on.
+enum class TrunkStretch {
+  kLowest,     // the lowest trunk_fit_share of the tree (within [trunk_fit_min_m, max])
+  kBelowFork,  // a shorter one: the tree forks within the lowest stretch
+};
+std::string ToString(TrunkStretch stretch);
+
+// Wall-clock seconds per step.
 struct StageTimes {
   double prepare_s = 0, scale_s = 0, graph_s = 0, trunk_s = 0, samples_s = 0, colonize_s = 0,
          refine_s = 0, radii_s = 0, branches_s = 0, total_s = 0;
@@ -107,8 +122,10 @@ struct ReconstructionResult {
   std::vector<AttractionPoint> attraction;
   Skeleton grown;
   TrunkFit trunk;
+  TrunkStretch trunk_stretch = TrunkStretch::kLowest;
+  double trunk_stretch_m = 0.0;  // metres of the trunk the cylinder was fitted on
   GroundPlane ground;
-  CloudScale measured;             // spacing and roughness of the input (after preparation)
+  CloudScale measured;             // spacing and roughness of the tree's points
   ReconstructionScale parameters;  // the lengths actually used
   size_t input_points = 0, working_points = 0, attraction_points = 0;
   size_t scene_sparse_removed = 0, scene_object_points_removed = 0;  // clean_scene
@@ -124,8 +141,8 @@ struct ReconstructionResult {
 // The lengths derived from a measured spacing and roughness (where `given` has zeros).
 ReconstructionScale DeriveScale(const CloudScale& measured, const ReconstructionScale& given);
 
-// Throws InputError naming `source` for input that is not a tree cloud (cloud_preparation.h)
-// and when no tree can be grown from the base.
+// Throws OptionError for invalid options, InputError naming `source` for input that is not a
+// tree cloud (cloud_preparation.h) and when no tree can be grown from the base.
 ReconstructionResult ReconstructTree(std::span<const Eigen::Vector3d> points,
                                      const std::string& source,
                                      const ReconstructionOptions& options = {});

@@ -13,17 +13,18 @@
 namespace simtree::reconstruction {
 
 struct GroundOptions {
-  double tolerance_m = 0.02;       // plane inliers
-  double max_tilt_rad = 0.26;      // from horizontal (~15 degrees)
-  double search_share = 0.15;      // of the tree's height, from the bottom, searched for ground
-  double min_width_m = 0.5;        // the ground patch must be at least this wide...
-  double max_covered_share = 0.5;  // ... and mostly open: at most this share of it has
-                                   // something standing right above it (a trunk's base ring
-                                   // has wood above all of it)
-  int min_points = 30;
-  int iterations = 300;
-  int max_scored_points = 20000;  // hypotheses are scored on an even subset of the low points
-  uint64_t seed = 1;
+  double tolerance_m = 0.02;       // metres from the plane that count as on it
+  double max_tilt_rad = 0.26;      // radians of the plane from horizontal (~15 degrees)
+  double search_share = 0.15;      // share of the cloud's height, from the bottom, searched
+  double min_width_m = 0.5;        // metres: the ground patch is at least this wide...
+  double max_covered_share = 0.5;  // ... and at most this share of it has something standing
+                                   // right above it (a trunk's base ring has wood above all)
+  int min_points = 30;             // points on the plane, at least
+  int iterations = 300;            // RANSAC hypotheses
+  int max_scored_points = 20000;   // hypotheses are scored on an even subset of the low points
+
+  // Throws OptionError naming the first field out of range.
+  void Validate() const;
 };
 
 struct GroundPlane {
@@ -44,7 +45,8 @@ struct GroundPlane {
   double HeightAt(double x, double y) const;
 };
 
+// `seed` drives the RANSAC hypotheses: the same points and seed give the same plane.
 GroundPlane FindGroundPlane(std::span<const Eigen::Vector3d> points,
-                            const GroundOptions& options = {});
+                            const GroundOptions& options = {}, uint64_t seed = 1);
 
 }  // namespace simtree::reconstruction

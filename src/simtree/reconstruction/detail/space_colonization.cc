@@ -7,6 +7,7 @@
 #include <numeric>
 #include <vector>
 
+#include "simtree/reconstruction/detail/option_checks.h"
 #include "simtree/reconstruction/detail/point_index.h"
 
 namespace simtree::reconstruction {
@@ -31,9 +32,12 @@ struct GrowingNode {
 
 class Colonizer {
  public:
-  Colonizer(std::span<const AttractionPoint> points, const ColonizationOptions& options)
+  Colonizer(std::span<const AttractionPoint> points, const ColonizationLengths& lengths,
+            const ColonizationOptions& options)
       : points_(points),
+        lengths_(lengths),
         options_(options),
+        bridge_gap_(options.bridge_gaps ? lengths.bridge_gap_m : 0.0),
         index_(Positions(points)),
         state_(points.size(), PointState::kFree),
         best_node_(points.size(), -1),
@@ -43,19 +47,18 @@ class Colonizer {
     cos_cone_ = options.perception_half_angle_rad >= M_PI
                     ? -2.0
                     : std::cos(options.perception_half_angle_rad);
-    use_geodesic_ = options.geodesic_slack_m >= 0.0;
+    use_geodesic_ = options.geodesic_consistency;
     for (size_t i = 0; i < points.size(); ++i) {
       const double t = points[i].thickness_m;
-      influence_[i] = std::max(options.influence_radius_m, options.influence_per_thickness * t);
-      kill_[i] = std::max(options.kill_radius_m, options.kill_per_thickness * t);
+      influence_[i] = std::max(lengths.influence_radius_m, options.influence_per_thickness * t);
+      kill_[i] = std::max(lengths.kill_radius_m, options.kill_per_thickness * t);
       max_reach_ = std::max(max_reach_, influence_[i]);
       if (points[i].geodesic_m < 0.0) use_geodesic_ = false;
     }
-    max_reach_ = std::max(max_reach_, options.kill_radius_m);
+    max_reach_ = std::max(max_reach_, lengths.kill_radius_m);
     pulls_of_.assign(points.size(), 0);
-    max_pulls_ =
-        std::min(60000, 8 + static_cast<int>(std::ceil(2.0 * (max_reach_ + options.bridge_gap_m) /
-                                                       options.step_m)));
+    max_pulls_ = std::min(
+        60000, 8 + static_cast<int>(std::ceil(2.0 * (max_reach_ + bridge_gap_) / lengths.step_m)));
   }
 
   Skeleton Grow(const Eigen::Vector3d& root, const Eigen::Vector3d& root_direction,
@@ -103,7 +106,7 @@ class Colonizer {
   bool GeodesicConsistent(const GrowingNode& node, int point, double distance) const {
     if (!use_geodesic_) return true;
     const double ahead = points_[point].geodesic_m - node.geodesic_m;
-    const double slack = options_.geodesic_slack_m;
+    const double slack = lengths_.geodesic_slack_m;
     return ahead >= -slack && ahead <= options_.geodesic_ratio * distance + slack;
   }
 
@@ -151,7 +154,7 @@ class Colonizer {
       const int i = near_[k];
       const double d = std::sqrt(d2_[k]);
       if (state_[i] != PointState::kFree || d > node_kill ||
-          std::abs((points_[i].position - position).dot(direction)) > 0.5 * options_.step_m ||
+          std::abs((points_[i].position - position).dot(direction)) > 0.5 * lengths_.step_m ||
           !GeodesicConsistent(node, i, d)) {
         continue;
       }
@@ -223,12 +226,12 @@ class Colonizer {
                        options_.direction_smoothing * node.direction)
                           .normalized();
         }
-        const Eigen::Vector3d position = node.position + options_.step_m * direction;
+        const Eigen::Vector3d position = node.position + lengths_.step_m * direction;
         // A step onto an existing child: that child is nearer the points, it takes them over
         // (an ancestor on thicker wood perceives further than its children do).
         int onto = -1;
         for (const int c : node.children) {
-          if ((nodes_[c].position - position).norm() < 0.3 * options_.step_m) onto = c;
+          if ((nodes_[c].position - position).norm() < 0.3 * lengths_.step_m) onto = c;
         }
         if (onto >= 0) {
           for (size_t k = begin; k < end; ++k) {
@@ -265,7 +268,7 @@ class Colonizer {
   // Points never perceived, grouped by proximity; each group within the bridge gap of a node gets
   // its nearest point assigned to that node. True when something was bridged.
   bool Bridge(ColonizationStats& stats) {
-    if (options_.bridge_gap_m <= 0.0) return false;
+    if (bridge_gap_ <= 0.0) return false;
     std::vector<int> free;
     for (size_t i = 0; i < points_.size(); ++i) {
       if (state_[i] == PointState::kFree) free.push_back(static_cast<int>(i));
@@ -303,7 +306,7 @@ class Colonizer {
       if (near_.empty()) continue;
       int chosen = use_geodesic_ ? -1 : 0;
       for (size_t c = 0; chosen < 0 && c < near_.size(); ++c) {
-        if (nodes_[near_[c]].geodesic_m <= p.geodesic_m + options_.geodesic_slack_m) {
+        if (nodes_[near_[c]].geodesic_m <= p.geodesic_m + lengths_.geodesic_slack_m) {
           chosen = static_cast<int>(c);
         }
       }
@@ -318,13 +321,13 @@ class Colonizer {
     }
     bool bridged = false;
     for (size_t g = 0; g < free.size(); ++g) {
-      if (best_point[g] < 0 || best_gap[g] > options_.bridge_gap_m) continue;
+      if (best_point[g] < 0 || best_gap[g] > bridge_gap_) continue;
       const int i = best_point[g];
       if (best_node_[i] < 0) active_.push_back(i);
       best_node_[i] = best_node[g];
       best_distance_[i] = best_gap[g];
       // The bridge's new nodes must keep perceiving the point across the whole gap.
-      influence_[i] = std::max(influence_[i], best_gap[g] + options_.step_m);
+      influence_[i] = std::max(influence_[i], best_gap[g] + lengths_.step_m);
       max_reach_ = std::max(max_reach_, influence_[i]);
       ++stats.bridges;
       bridged = true;
@@ -333,7 +336,9 @@ class Colonizer {
   }
 
   std::span<const AttractionPoint> points_;
+  const ColonizationLengths& lengths_;
   const ColonizationOptions& options_;
+  const double bridge_gap_;  // 0 when bridging is off
   PointIndex index_;
   std::vector<PointState> state_;
   std::vector<int> best_node_;
@@ -353,9 +358,30 @@ class Colonizer {
 
 }  // namespace
 
+void ColonizationLengths::Validate() const {
+  CheckPositive("step_m", step_m);
+  CheckPositive("influence_radius_m", influence_radius_m);
+  CheckPositive("kill_radius_m", kill_radius_m);
+  CheckNonNegative("geodesic_slack_m", geodesic_slack_m);
+  CheckNonNegative("bridge_gap_m", bridge_gap_m);
+}
+
+void ColonizationOptions::Validate() const {
+  CheckNonNegative("influence_per_thickness", influence_per_thickness);
+  CheckNonNegative("kill_per_thickness", kill_per_thickness);
+  CheckNonNegative("kill_per_node_thickness", kill_per_node_thickness);
+  CheckPositive("perception_half_angle_rad", perception_half_angle_rad);
+  CheckShare("direction_smoothing", direction_smoothing);
+  CheckPositive("geodesic_ratio", geodesic_ratio);
+  CheckAtLeast("max_nodes", max_nodes, 1);
+}
+
 Skeleton GrowByColonization(std::span<const AttractionPoint> points, const Eigen::Vector3d& root,
                             const Eigen::Vector3d& root_direction,
-                            const ColonizationOptions& options, ColonizationStats* stats) {
+                            const ColonizationLengths& lengths, const ColonizationOptions& options,
+                            ColonizationStats* stats) {
+  lengths.Validate();
+  options.Validate();
   ColonizationStats local;
   ColonizationStats& s = stats ? *stats : local;
   s = {};
@@ -364,7 +390,7 @@ Skeleton GrowByColonization(std::span<const AttractionPoint> points, const Eigen
     skeleton.nodes.push_back({root, -1, 0.0, 0.0, 0.0});
     return skeleton;
   }
-  Colonizer colonizer(points, options);
+  Colonizer colonizer(points, lengths, options);
   return colonizer.Grow(root, root_direction, s);
 }
 

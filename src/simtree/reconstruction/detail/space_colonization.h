@@ -39,34 +39,47 @@ struct AttractionPoint {
   double geodesic_m = -1.0;  // distance from the base along the scan; < 0 when unknown
 };
 
+// The lengths colonization runs at. ReconstructTree derives them from the cloud's measured
+// scale (ReconstructionScale); the defaults suit a cloud sampled about every centimetre.
+struct ColonizationLengths {
+  double step_m = 0.02;              // metres, the growth step D
+  double influence_radius_m = 0.08;  // metres, d_i: a node perceives points this close
+  double kill_radius_m = 0.03;       // metres, d_k: a point this close to a node is reached
+  double geodesic_slack_m = 0.05;    // metres of slack in the geodesic consistency test
+  double bridge_gap_m = 0.25;        // metres, the longest gap bridged (0: none)
+
+  // Throws OptionError naming the first field out of range.
+  void Validate() const;
+};
+
 struct ColonizationOptions {
-  double step_m = 0.02;              // growth step D
-  double influence_radius_m = 0.08;  // d_i: a node perceives points this close
-  double kill_radius_m = 0.03;       // d_k: a point this close to a node is reached
   // Thickness-scaled radii: a point is perceived within max(d_i, influence_per_thickness x its
   // thickness) and reached within max(d_k, kill_per_thickness x its thickness). 0 turns it off.
-  double influence_per_thickness = 2.0;
-  double kill_per_thickness = 0.6;
+  double influence_per_thickness = 2.0;  // x the point's thickness
+  double kill_per_thickness = 0.6;       // x the point's thickness
   // A node on thick wood also reaches every point within this x its own thickness (the radius of
   // the wood it stands on, from the points it reached first). 0 turns it off.
   double kill_per_node_thickness = 0.9;
-  // Half-angle of the perception cone around a node's growth direction (pi or more: no cone).
+  // Radians, half-angle of the perception cone around a node's growth direction (pi or more: no
+  // cone).
   double perception_half_angle_rad = 1.4;
   // Share of a tip's previous direction kept in its next step (0: none). Off by default: with
-  // recentring and skeleton smoothing after growth it changed nothing measurable
+  // recentring and skeleton smoothing after growth it changes nothing measurable
   // (docs/reconstruction.md).
   double direction_smoothing = 0.0;
   // Geodesic consistency: a node at geodesic g perceives a point at geodesic g' and distance d
-  // only when -slack <= g' - g <= ratio d + slack. Off when `geodesic_slack_m` < 0 or the points
-  // carry no geodesic.
-  double geodesic_ratio = 1.6;
-  double geodesic_slack_m = 0.05;
+  // only when -slack <= g' - g <= geodesic_ratio d + slack. Also off when the points carry no
+  // geodesic.
+  bool geodesic_consistency = true;
+  double geodesic_ratio = 1.6;  // x the straight distance
   // Recentring: when growth ends, every node that reached points moves onto their weighted centre
   // (growth steps towards points but lands beside them by up to the kill radius).
   bool recenter = true;
-  // Longest gap bridged towards unreached points once growth stops (0: no bridging).
-  double bridge_gap_m = 0.25;
-  int max_nodes = 400000;
+  bool bridge_gaps = true;  // bridge gaps up to ColonizationLengths::bridge_gap_m once growth stops
+  int max_nodes = 400000;   // growth stops at this many nodes
+
+  // Throws OptionError naming the first field out of range.
+  void Validate() const;
 };
 
 struct ColonizationStats {
@@ -81,6 +94,8 @@ struct ColonizationStats {
 // the weight of the points it reached and `thickness` their weighted mean thickness.
 Skeleton GrowByColonization(std::span<const AttractionPoint> points, const Eigen::Vector3d& root,
                             const Eigen::Vector3d& root_direction,
-                            const ColonizationOptions& options, ColonizationStats* stats = nullptr);
+                            const ColonizationLengths& lengths,
+                            const ColonizationOptions& options = {},
+                            ColonizationStats* stats = nullptr);
 
 }  // namespace simtree::reconstruction

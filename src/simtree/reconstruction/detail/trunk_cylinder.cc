@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <random>
 
 #include <fmt/format.h>
@@ -10,6 +11,7 @@
 
 #include "simtree/core/statistics.h"
 #include "simtree/reconstruction/detail/local_geometry.h"
+#include "simtree/reconstruction/detail/option_checks.h"
 #include "simtree/reconstruction/detail/point_index.h"
 
 namespace simtree::reconstruction {
@@ -137,10 +139,10 @@ std::vector<Eigen::Vector2d> InPlane(std::span<const Eigen::Vector3d> points,
 // from what already fits the cylinder: a fork or a low branch must show), robust to the stray
 // points in it.
 std::vector<TrunkSlice> FitSlices(const Cylinder& c, const Eigen::Vector3d& base, double top,
-                                  std::span<const Eigen::Vector3d> points,
+                                  std::span<const Eigen::Vector3d> points, double threshold,
                                   const TrunkFitOptions& options) {
   const int slices = std::max(options.slices, 1);
-  const double reach = 2.0 * c.radius + 3.0 * options.inlier_threshold_m;
+  const double reach = 2.0 * c.radius + 3.0 * threshold;
   std::vector<std::vector<Eigen::Vector3d>> slab(slices);
   for (const Eigen::Vector3d& p : points) {
     const double t = (p - base).dot(c.axis);
@@ -154,10 +156,10 @@ std::vector<TrunkSlice> FitSlices(const Cylinder& c, const Eigen::Vector3d& base
     slice.to_m = top * (s + 1) / slices;
     slice.points = static_cast<int>(slab[s].size());
     const Eigen::Vector3d origin = base + c.axis * 0.5 * (slice.from_m + slice.to_m);
-    if (slice.points >= 6 && FitCircleRobust(slab[s], origin, c.axis, options.inlier_threshold_m,
-                                             &slice.centre, &slice.radius_m)) {
+    if (slice.points >= 6 &&
+        FitCircleRobust(slab[s], origin, c.axis, threshold, &slice.centre, &slice.radius_m)) {
       slice.centre_offset_m = c.AxisDistance(slice.centre);
-      const double slack = options.inlier_threshold_m;
+      const double slack = threshold;
       slice.agrees = std::abs(slice.radius_m - c.radius) <=
                          options.slice_radius_tolerance * c.radius + slack &&
                      slice.centre_offset_m <= options.slice_centre_tolerance * c.radius + slack;
@@ -170,7 +172,7 @@ std::vector<TrunkSlice> FitSlices(const Cylinder& c, const Eigen::Vector3d& base
 // The cylinder the slice circles describe, when most of them agree with each other (radii within
 // the tolerance of their median, centres on one line): axis through their centres, radius their
 // median. False when they do not or too few fitted.
-bool SliceConsensus(std::span<const TrunkSlice> slices, const Cylinder& c,
+bool SliceConsensus(std::span<const TrunkSlice> slices, const Cylinder& c, double threshold,
                     const TrunkFitOptions& options, Cylinder* out) {
   std::vector<double> radii;
   for (const TrunkSlice& s : slices) {
@@ -178,7 +180,7 @@ bool SliceConsensus(std::span<const TrunkSlice> slices, const Cylinder& c,
   }
   if (radii.size() < 3) return false;
   const double radius = UpperMedian(radii);
-  const double slack = options.inlier_threshold_m;
+  const double slack = threshold;
   std::vector<Eigen::Vector3d> centres;
   for (const TrunkSlice& s : slices) {
     if (s.radius_m > 0 &&
@@ -209,6 +211,157 @@ bool SliceConsensus(std::span<const TrunkSlice> slices, const Cylinder& c,
   out->radius = radius;
   return true;
 }
+
+// The MSAC cylinder: hypotheses through two points and their normals, within the tilt and radius
+// limits, scored on a fixed random subset (the whole set when small) by the truncated squared
+// distance. Nothing when no hypothesis is within the limits.
+std::optional<Cylinder> MsacCylinder(std::span<const Eigen::Vector3d> points, double threshold,
+                                     const TrunkFitOptions& options, uint64_t seed) {
+  const std::vector<Eigen::Vector3d> normals = EstimateNormals(points, options.normal_neighbours);
+  std::mt19937_64 rng(seed);
+  const int n = static_cast<int>(points.size());
+  std::vector<int> subset(n);
+  for (int i = 0; i < n; ++i) subset[i] = i;
+  std::shuffle(subset.begin(), subset.end(), rng);
+  if (subset.size() > 1500) subset.resize(1500);
+  std::uniform_int_distribution<int> pick(0, n - 1);
+  const double cos_tilt = std::cos(options.max_tilt_rad);
+  double best_cost = std::numeric_limits<double>::infinity();
+  Cylinder best;
+  for (int it = 0; it < options.iterations; ++it) {
+    const int i = pick(rng), j = pick(rng);
+    if (i == j || normals[i].isZero() || normals[j].isZero()) continue;
+    Cylinder c;
+    if (!CylinderFromTwoPoints(points[i], normals[i], points[j], normals[j], &c)) continue;
+    if (c.axis.z() < cos_tilt || c.radius < options.min_radius_m ||
+        c.radius > options.max_radius_m) {
+      continue;
+    }
+    const double cost = MsacCost(c, points, subset, threshold);
+    if (cost < best_cost) {
+      best_cost = cost;
+      best = c;
+    }
+  }
+  if (!std::isfinite(best_cost)) return std::nullopt;
+  return best;
+}
+
+// The fit of `start` to `kept`: refined on its inliers (not when it was rebuilt from slice
+// circles, which measure it better), measured, and checked slice by slice; a rebuilt cylinder
+// takes its radius from the slices across its own axis. Nothing when it leaves the tilt and
+// radius limits.
+std::optional<TrunkFit> MeasureCylinder(const Cylinder& start, bool rebuilt,
+                                        std::span<const Eigen::Vector3d> kept, double base_height,
+                                        double threshold, const TrunkFitOptions& options) {
+  Cylinder c = start;
+  std::vector<int> inliers;
+  if (!rebuilt) {
+    for (int pass = 0; pass < 3; ++pass) {
+      inliers = Inliers(c, kept, threshold);
+      c = RefineCylinder(c, kept, inliers);
+    }
+  }
+  inliers = Inliers(c, kept, threshold);
+  if (inliers.size() < 8 || c.radius < options.min_radius_m || c.radius > options.max_radius_m ||
+      c.axis.z() < std::cos(options.max_tilt_rad)) {
+    return std::nullopt;
+  }
+  TrunkFit fit;
+  // Axis point at the base height.
+  const double t_base = (base_height - c.point.z()) / c.axis.z();
+  fit.cylinder = c;
+  fit.base = c.point + t_base * c.axis;
+  fit.inliers = static_cast<int>(inliers.size());
+  fit.inlier_share = static_cast<double>(inliers.size()) / kept.size();
+  double sum2 = 0.0, top = 0.0;
+  for (const int i : inliers) {
+    const double e = c.AxisDistance(kept[i]) - c.radius;
+    sum2 += e * e;
+    top = std::max(top, c.AxisCoordinate(kept[i]) - t_base);
+  }
+  fit.rms_m = std::sqrt(sum2 / inliers.size());
+  fit.length_m = top;
+  fit.found = true;
+  fit.slices = FitSlices(c, fit.base, top, kept, threshold, options);
+  if (rebuilt) {
+    std::vector<double> fitted;
+    for (const TrunkSlice& slice : fit.slices) {
+      if (slice.radius_m > 0) fitted.push_back(slice.radius_m);
+    }
+    if (!fitted.empty()) c.radius = fit.cylinder.radius = UpperMedian(fitted);
+    fit.slices = FitSlices(c, fit.base, top, kept, threshold, options);
+  }
+  std::vector<double> radii;
+  for (const TrunkSlice& slice : fit.slices) {
+    if (slice.agrees) radii.push_back(slice.radius_m);
+  }
+  fit.slice_radius_m = radii.empty() ? c.radius : UpperMedian(radii);
+  fit.slices_agree = radii.size() == fit.slices.size();
+  return fit;
+}
+
+// Refines the MSAC cylinder and checks it slice by slice, with two corrections, each at most
+// once: when the slice circles agree with each other but not with the cylinder (on a noisy thin
+// trunk a wider tilted cylinder can cut through more of the blurred ring than the true one), the
+// cylinder is rebuilt from the slice circles; when a slice above the lowest disagrees (a fork, a
+// low branch), the fit is shortened to the stretch below it.
+TrunkFit RefineAndCheck(std::span<const Eigen::Vector3d> points, Cylinder best, double base_height,
+                        double threshold, const TrunkFitOptions& options) {
+  TrunkFit fit;
+  std::vector<char> use(points.size(), 1);
+  bool rebuilt = false, shortened = false;
+  for (int round = 0; round < 3; ++round) {
+    std::vector<Eigen::Vector3d> kept;
+    for (size_t i = 0; i < points.size(); ++i) {
+      if (use[i]) kept.push_back(points[i]);
+    }
+    std::optional<TrunkFit> measured =
+        MeasureCylinder(best, rebuilt, kept, base_height, threshold, options);
+    if (!measured) {
+      fit.note = "the refined cylinder left the tilt and radius limits";
+      fit.found = false;
+      return fit;
+    }
+    measured->note = std::move(fit.note);
+    fit = std::move(*measured);
+    if (fit.slices_agree) break;
+
+    if (!rebuilt) {
+      Cylinder consensus;
+      if (SliceConsensus(fit.slices, fit.cylinder, threshold, options, &consensus)) {
+        fit.note = fmt::format(
+            "the MSAC cylinder (radius {:.4f} m) disagreed with the slice circles; rebuilt from "
+            "them",
+            fit.cylinder.radius);
+        best = consensus;
+        rebuilt = true;
+        continue;
+      }
+    }
+    if (shortened) break;
+    int first_bad = 0;
+    while (fit.slices[first_bad].agrees) ++first_bad;
+    if (first_bad == 0) {
+      if (fit.note.empty()) {
+        fit.note = "the lowest slice disagrees with the cylinder (root flare or a low fork)";
+      }
+      break;
+    }
+    // Keep the stretch below the first disagreeing slice and fit again.
+    const double keep_to = fit.slices[first_bad].from_m;
+    fit.note += fmt::format("{}shortened to the lowest {:.2f} m, where the slices agree",
+                            fit.note.empty() ? "" : "; ", keep_to);
+    const double t_base = (base_height - fit.cylinder.point.z()) / fit.cylinder.axis.z();
+    for (size_t i = 0; i < points.size(); ++i) {
+      use[i] = fit.cylinder.AxisCoordinate(points[i]) - t_base <= keep_to;
+    }
+    best = fit.cylinder;
+    shortened = true;
+  }
+  return fit;
+}
+
 }  // namespace
 
 double Cylinder::AxisDistance(const Eigen::Vector3d& p) const {
@@ -319,141 +472,35 @@ bool FitCircleRobust(std::span<const Eigen::Vector3d> points, const Eigen::Vecto
   return true;
 }
 
+void TrunkFitOptions::Validate() const {
+  CheckAtLeast("iterations", iterations, 1);
+  CheckWithin("max_tilt_rad", max_tilt_rad, 0.0, M_PI / 2);
+  CheckPositive("min_radius_m", min_radius_m);
+  CheckOrdered("min_radius_m", min_radius_m, "max_radius_m", max_radius_m);
+  CheckAtLeast("normal_neighbours", normal_neighbours, 3);
+  CheckAtLeast("slices", slices, 1);
+  CheckNonNegative("slice_radius_tolerance", slice_radius_tolerance);
+  CheckNonNegative("slice_centre_tolerance", slice_centre_tolerance);
+}
+
 TrunkFit FitTrunkCylinder(std::span<const Eigen::Vector3d> points, double base_height,
-                          const TrunkFitOptions& options) {
+                          double inlier_threshold_m, const TrunkFitOptions& options,
+                          uint64_t seed) {
+  options.Validate();
+  CheckPositive("inlier_threshold_m", inlier_threshold_m);
   TrunkFit fit;
   if (points.size() < 10) {
     fit.note =
         fmt::format("{} points around the trunk base: too few for a cylinder", points.size());
     return fit;
   }
-  const std::vector<Eigen::Vector3d> normals = EstimateNormals(points, options.normal_neighbours);
-  std::mt19937_64 rng(options.seed);
-  const int n = static_cast<int>(points.size());
-  // Score hypotheses on a fixed random subset (the whole set when small).
-  std::vector<int> subset(n);
-  for (int i = 0; i < n; ++i) subset[i] = i;
-  std::shuffle(subset.begin(), subset.end(), rng);
-  if (subset.size() > 1500) subset.resize(1500);
-  std::uniform_int_distribution<int> pick(0, n - 1);
-  const double cos_tilt = std::cos(options.max_tilt_rad);
-  double best_cost = std::numeric_limits<double>::infinity();
-  Cylinder best;
-  for (int it = 0; it < options.iterations; ++it) {
-    const int i = pick(rng), j = pick(rng);
-    if (i == j || normals[i].isZero() || normals[j].isZero()) continue;
-    Cylinder c;
-    if (!CylinderFromTwoPoints(points[i], normals[i], points[j], normals[j], &c)) continue;
-    if (c.axis.z() < cos_tilt || c.radius < options.min_radius_m ||
-        c.radius > options.max_radius_m) {
-      continue;
-    }
-    const double cost = MsacCost(c, points, subset, options.inlier_threshold_m);
-    if (cost < best_cost) {
-      best_cost = cost;
-      best = c;
-    }
-  }
-  if (!std::isfinite(best_cost)) {
+  const std::optional<Cylinder> hypothesis =
+      MsacCylinder(points, inlier_threshold_m, options, seed);
+  if (!hypothesis) {
     fit.note = "no cylinder hypothesis within the tilt and radius limits";
     return fit;
   }
-
-  // Refine on inliers and check slices. Two corrections, each at most once: when the slice
-  // circles agree with each other but not with the cylinder (on a noisy thin trunk a wider tilted
-  // cylinder can cut through more of the blurred ring than the true one), the cylinder is rebuilt
-  // from the slice circles; when a slice above the lowest disagrees (a fork, a low branch), the fit
-  // is shortened to the stretch below it.
-  std::vector<char> use(points.size(), 1);
-  bool refine = true, rebuilt = false, shortened = false;
-  for (int round = 0; round < 3; ++round) {
-    Cylinder c = best;
-    std::vector<Eigen::Vector3d> kept;
-    for (size_t i = 0; i < points.size(); ++i) {
-      if (use[i]) kept.push_back(points[i]);
-    }
-    std::vector<int> inliers;
-    if (refine) {
-      for (int pass = 0; pass < 3; ++pass) {
-        inliers = Inliers(c, kept, options.inlier_threshold_m);
-        c = RefineCylinder(c, kept, inliers);
-      }
-    }
-    inliers = Inliers(c, kept, options.inlier_threshold_m);
-    if (inliers.size() < 8 || c.radius < options.min_radius_m || c.radius > options.max_radius_m ||
-        c.axis.z() < cos_tilt) {
-      fit.note = "the refined cylinder left the tilt and radius limits";
-      fit.found = false;
-      return fit;
-    }
-    // Axis point at the base height.
-    const double t_base = (base_height - c.point.z()) / c.axis.z();
-    fit.cylinder = c;
-    fit.base = c.point + t_base * c.axis;
-    fit.inliers = static_cast<int>(inliers.size());
-    fit.inlier_share = static_cast<double>(inliers.size()) / kept.size();
-    double sum2 = 0.0, top = 0.0;
-    for (const int i : inliers) {
-      const double e = c.AxisDistance(kept[i]) - c.radius;
-      sum2 += e * e;
-      top = std::max(top, c.AxisCoordinate(kept[i]) - t_base);
-    }
-    fit.rms_m = std::sqrt(sum2 / inliers.size());
-    fit.length_m = top;
-    fit.found = true;
-    fit.slices = FitSlices(c, fit.base, top, kept, options);
-    if (rebuilt) {
-      // The slices of the rebuilt cylinder, measured across its own axis, give its radius.
-      std::vector<double> fitted;
-      for (const TrunkSlice& slice : fit.slices) {
-        if (slice.radius_m > 0) fitted.push_back(slice.radius_m);
-      }
-      if (!fitted.empty()) c.radius = fit.cylinder.radius = UpperMedian(fitted);
-      fit.slices = FitSlices(c, fit.base, top, kept, options);
-    }
-
-    std::vector<double> radii;
-    for (const TrunkSlice& slice : fit.slices) {
-      if (slice.agrees) radii.push_back(slice.radius_m);
-    }
-    fit.slice_radius_m = radii.empty() ? c.radius : UpperMedian(radii);
-    fit.slices_agree = radii.size() == fit.slices.size();
-    if (fit.slices_agree) break;
-
-    if (!rebuilt) {
-      Cylinder consensus;
-      if (SliceConsensus(fit.slices, c, options, &consensus)) {
-        fit.note = fmt::format(
-            "the MSAC cylinder (radius {:.4f} m) disagreed with the slice circles; rebuilt from "
-            "them",
-            c.radius);
-        best = consensus;
-        refine = false;
-        rebuilt = true;
-        continue;
-      }
-    }
-    if (shortened) break;
-    int first_bad = 0;
-    while (fit.slices[first_bad].agrees) ++first_bad;
-    if (first_bad == 0) {
-      if (fit.note.empty()) {
-        fit.note = "the lowest slice disagrees with the cylinder (root flare or a low fork)";
-      }
-      break;
-    }
-    // Keep the stretch below the first disagreeing slice and fit again.
-    const double keep_to = fit.slices[first_bad].from_m;
-    fit.note += fmt::format("{}shortened to the lowest {:.2f} m, where the slices agree",
-                            fit.note.empty() ? "" : "; ", keep_to);
-    for (size_t i = 0; i < points.size(); ++i) {
-      const double t = c.AxisCoordinate(points[i]) - t_base;
-      use[i] = t <= keep_to;
-    }
-    best = c;
-    shortened = true;
-  }
-  return fit;
+  return RefineAndCheck(points, *hypothesis, base_height, inlier_threshold_m, options);
 }
 
 }  // namespace simtree::reconstruction

@@ -29,16 +29,17 @@ struct Cylinder {
 };
 
 struct TrunkFitOptions {
-  double inlier_threshold_m = 0.01;  // MSAC truncation: points this far from the surface count
-  int iterations = 400;
-  uint64_t seed = 1;
-  double max_tilt_rad = 0.6;  // from vertical (~35 degrees)
-  double min_radius_m = 0.004;
-  double max_radius_m = 1.5;
-  int normal_neighbours = 12;
-  int slices = 5;
-  double slice_radius_tolerance = 0.12;  // relative to the cylinder radius
-  double slice_centre_tolerance = 0.25;  // in cylinder radii
+  int iterations = 400;                  // MSAC hypotheses
+  double max_tilt_rad = 0.6;             // radians of the axis from vertical (~35 degrees)
+  double min_radius_m = 0.004;           // metres, smallest cylinder accepted
+  double max_radius_m = 1.5;             // metres, largest cylinder accepted
+  int normal_neighbours = 12;            // points in each normal's plane fit
+  int slices = 5;                        // slices along the axis checked against the cylinder
+  double slice_radius_tolerance = 0.12;  // a slice agrees within this share of the radius...
+  double slice_centre_tolerance = 0.25;  // ... and its centre within this many radii of the axis
+
+  // Throws OptionError naming the first field out of range.
+  void Validate() const;
 };
 
 struct TrunkSlice {
@@ -68,8 +69,11 @@ struct TrunkFit {
 
 // Fits the trunk to `points` (the scan around the lower trunk; other wood is tolerated as
 // outliers). `base_height` is the z of the tree's base; `base` is the axis point at that z.
+// `inlier_threshold_m` is the MSAC truncation (points this far from the surface count; also the
+// slack of the slice checks); `seed` drives the hypotheses.
 TrunkFit FitTrunkCylinder(std::span<const Eigen::Vector3d> points, double base_height,
-                          const TrunkFitOptions& options = {});
+                          double inlier_threshold_m, const TrunkFitOptions& options = {},
+                          uint64_t seed = 1);
 
 // Circle through points projected on the plane normal to `axis` (algebraic fit, then a few
 // geometric Gauss-Newton steps): centre (3D, in the plane through `origin`) and radius. False
