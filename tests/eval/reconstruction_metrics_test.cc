@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "simtree/core/error.h"
 #include "simtree/core/frames.h"
 
 namespace simtree::eval {
@@ -133,6 +134,20 @@ TEST(ReconstructionMetrics, EmptyTreesScoreZeroWithoutCrashing) {
   EXPECT_EQ(s.recall, 0.0);
   const CloudFitScores fit = ScoreAgainstCloud(Tree{}, std::vector<Eigen::Vector3d>{{0, 0, 0}});
   EXPECT_EQ(fit.branches, 0);
+}
+
+TEST(ReconstructionMetrics, NonsenseOptionsAreRefusedByName) {
+  EXPECT_THROW(
+      {
+        try {
+          ScoreAgainstTruth(Truth(), Truth(), {.found_share = 1.5});
+        } catch (const InputError& e) {
+          EXPECT_STREQ(e.what(), "options: found_share: expected within [0, 1], got 1.5");
+          throw;
+        }
+      },
+      InputError);
+  EXPECT_THROW(ScoreAgainstTruth(Truth(), Truth(), {.sample_step_m = 0.0}), InputError);
 }
 
 TEST(ReconstructionMetrics, MissedThinEndsCountOnlyInTheFullSkeletonDistance) {

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "simtree/reconstruction/detail/option_checks.h"
 #include "simtree/reconstruction/detail/point_index.h"
 
 namespace simtree::eval {
@@ -120,53 +121,64 @@ int MostAlong(const std::map<int, double>& along) {
       ->first;
 }
 
-}  // namespace
+// A true branch is scored when its base is at least min_true_radius_m thick.
+bool ScoredTruth(const Tree& truth, int branch, const TruthScoreOptions& options) {
+  return truth.branches[branch].nodes.front().radius >= options.min_true_radius_m;
+}
 
-TruthScores ScoreAgainstTruth(const Tree& reconstruction, const Tree& truth,
-                              const TruthScoreOptions& options) {
-  TruthScores scores;
-  const SkeletonSamples rec(reconstruction, options.sample_step_m);
-  const SkeletonSamples tru(truth, options.sample_step_m);
-  if (rec.empty() || tru.empty()) return scores;
-
-  auto scored_truth = [&](int branch) {
-    return truth.branches[branch].nodes.front().radius >= options.min_true_radius_m;
-  };
-  for (const Branch& b : truth.branches) {
+// The branches of a tree, not matched yet.
+std::vector<BranchMatch> ListBranches(const Tree& tree) {
+  std::vector<BranchMatch> out;
+  for (const Branch& b : tree.branches) {
     BranchMatch m;
     m.branch = b.id;
     m.level = b.level;
     m.length_m = b.Length();
     m.base_radius_m = b.nodes.front().radius;
-    m.scored = scored_truth(b.id);
-    scores.truth.push_back(m);
-    scores.true_total_length_m += m.length_m;
+    out.push_back(m);
   }
-  for (const Branch& b : reconstruction.branches) {
-    BranchMatch m;
-    m.branch = b.id;
-    m.level = b.level;
-    m.length_m = b.Length();
-    m.base_radius_m = b.nodes.front().radius;
-    scores.reconstruction.push_back(m);
-    scores.total_length_m += m.length_m;
-  }
+  return out;
+}
 
-  // True skeleton against the reconstruction: recall, completeness distance, radius error.
-  std::vector<double> near_length(truth.size(), 0.0), total_length(truth.size(), 0.0);
-  std::vector<std::map<int, double>> along_truth(truth.size());
+// Per branch of one tree: how much of its length lies near the other tree's skeleton, and along
+// which of the other's branches.
+struct Coverage {
+  std::vector<double> near, total;
+  std::vector<std::map<int, double>> along;
+
+  explicit Coverage(int branches) : near(branches, 0.0), total(branches, 0.0), along(branches) {}
+  // Sets the match's near share, whether it counts as found and the branch it lies along.
+  void Match(BranchMatch& m, double found_share) const {
+    m.near_share = total[m.branch] > 0 ? near[m.branch] / total[m.branch] : 0.0;
+    m.found = m.near_share > found_share;
+    m.matched = MostAlong(along[m.branch]);
+  }
+};
+
+// The true skeleton against the reconstruction: recall, completeness distance, radius error.
+struct TruthSide {
+  Coverage coverage;
+  double distance_m = 0.0;        // mean over scored branches
+  double thick_distance_m = 0.0;  // the same over wood >= min_true_radius_m
+  double radius_error = 0.0;      // mean relative, where near
+  double thick_length_m = 0.0;    // true wood >= min_true_radius_m
+};
+
+TruthSide CompareTruthToReconstruction(const SkeletonSamples& tru, const SkeletonSamples& rec,
+                                       const Tree& truth, const TruthScoreOptions& options) {
+  TruthSide out{Coverage(truth.size())};
   double sum_distance = 0.0, sum_weight = 0.0, radius_error = 0.0, radius_weight = 0.0;
   double thick_distance = 0.0, thick_weight = 0.0;
   for (const auto& s : tru.samples()) {
     const auto nearest = rec.NearestAxis(s.position);
-    total_length[s.branch] += s.length;
+    out.coverage.total[s.branch] += s.length;
     const bool near = nearest.distance <= options.near_distance_m + s.radius;
     if (near) {
-      near_length[s.branch] += s.length;
-      along_truth[s.branch][nearest.branch] += s.length;
+      out.coverage.near[s.branch] += s.length;
+      out.coverage.along[s.branch][nearest.branch] += s.length;
     }
-    if (s.radius >= options.min_true_radius_m) scores.true_length_m += s.length;
-    if (!scored_truth(s.branch)) continue;
+    if (s.radius >= options.min_true_radius_m) out.thick_length_m += s.length;
+    if (!ScoredTruth(truth, s.branch, options)) continue;
     sum_distance += s.length * nearest.distance;
     sum_weight += s.length;
     if (s.radius >= options.min_true_radius_m) {
@@ -178,60 +190,50 @@ TruthScores ScoreAgainstTruth(const Tree& reconstruction, const Tree& truth,
       radius_weight += s.length;
     }
   }
-  scores.truth_to_reconstruction_m = sum_weight > 0 ? sum_distance / sum_weight : 0.0;
-  scores.thick_truth_to_reconstruction_m = thick_weight > 0 ? thick_distance / thick_weight : 0.0;
-  scores.radius_error = radius_weight > 0 ? radius_error / radius_weight : 0.0;
-  for (BranchMatch& m : scores.truth) {
-    m.near_share = total_length[m.branch] > 0 ? near_length[m.branch] / total_length[m.branch] : 0;
-    m.found = m.near_share > options.found_share;
-    m.matched = MostAlong(along_truth[m.branch]);
-    if (!m.scored) continue;
-    ++scores.true_branches;
-    scores.found += m.found;
-  }
-  scores.recall = Ratio(scores.found, scores.true_branches);
+  out.distance_m = sum_weight > 0 ? sum_distance / sum_weight : 0.0;
+  out.thick_distance_m = thick_weight > 0 ? thick_distance / thick_weight : 0.0;
+  out.radius_error = radius_weight > 0 ? radius_error / radius_weight : 0.0;
+  return out;
+}
 
-  // Reconstruction against the true skeleton: precision, accuracy distance.
-  std::fill(near_length.begin(), near_length.end(), 0.0);
-  std::vector<double> rec_near(reconstruction.size(), 0.0), rec_total(reconstruction.size(), 0.0);
-  std::vector<double> rec_claimed(reconstruction.size(), 0.0);
-  std::vector<std::map<int, double>> along_rec(reconstruction.size());
-  sum_distance = sum_weight = 0.0;
+// The reconstruction against the true skeleton: precision, accuracy distance, and per branch the
+// wood it claims: where the truth is thick enough to score, or where there is none.
+struct ReconstructionSide {
+  Coverage coverage;
+  std::vector<double> claimed;  // metres per reconstructed branch
+  double distance_m = 0.0;
+};
+
+ReconstructionSide CompareReconstructionToTruth(const SkeletonSamples& rec,
+                                                const SkeletonSamples& tru,
+                                                const Tree& reconstruction,
+                                                const TruthScoreOptions& options) {
+  ReconstructionSide out{Coverage(reconstruction.size()),
+                         std::vector<double>(reconstruction.size(), 0.0)};
+  double sum_distance = 0.0, sum_weight = 0.0;
   for (const auto& s : rec.samples()) {
     const auto nearest = tru.NearestAxis(s.position);
-    rec_total[s.branch] += s.length;
+    out.coverage.total[s.branch] += s.length;
     sum_distance += s.length * nearest.distance;
     sum_weight += s.length;
-    along_rec[s.branch][nearest.branch] += s.length;
+    out.coverage.along[s.branch][nearest.branch] += s.length;
     const bool near = nearest.distance <= options.near_distance_m + nearest.radius;
-    if (near) rec_near[s.branch] += s.length;
-    // Wood claimed where the truth is thick enough to score, or where there is none.
-    if (!near || nearest.radius >= options.min_true_radius_m) rec_claimed[s.branch] += s.length;
+    if (near) out.coverage.near[s.branch] += s.length;
+    if (!near || nearest.radius >= options.min_true_radius_m) out.claimed[s.branch] += s.length;
   }
-  scores.reconstruction_to_truth_m = sum_weight > 0 ? sum_distance / sum_weight : 0.0;
-  for (BranchMatch& m : scores.reconstruction) {
-    m.near_share = rec_total[m.branch] > 0 ? rec_near[m.branch] / rec_total[m.branch] : 0.0;
-    m.found = m.near_share > options.found_share;
-    m.matched = MostAlong(along_rec[m.branch]);
-    // Not scored: correct, but along true wood thinner than the scored radius.
-    m.scored = !(m.found && m.matched >= 0 && !scored_truth(m.matched));
-    if (!m.scored) continue;
-    // A branch along thin true wood claims none: where it leaves thick wood its start lies near
-    // that wood (synth's twigs along a trunk claimed ~0.1 m each).
-    scores.length_m += rec_claimed[m.branch];
-    ++scores.reconstructed_branches;
-    scores.correct += m.found;
-  }
-  scores.precision = Ratio(scores.correct, scores.reconstructed_branches);
-  scores.mean_skeleton_distance_m =
-      0.5 * (scores.reconstruction_to_truth_m + scores.truth_to_reconstruction_m);
-  scores.thick_skeleton_distance_m =
-      0.5 * (scores.reconstruction_to_truth_m + scores.thick_truth_to_reconstruction_m);
-  scores.length_error = scores.true_length_m > 0
-                            ? (scores.length_m - scores.true_length_m) / scores.true_length_m
-                            : 0.0;
+  out.distance_m = sum_weight > 0 ? sum_distance / sum_weight : 0.0;
+  return out;
+}
 
-  // Trunk radius over the lowest stretch of the true trunk.
+struct TrunkRadii {
+  double reconstructed_m = 0.0, true_m = 0.0;  // means
+  double error = 0.0;                          // |reconstructed / true - 1|
+};
+
+// Mean radii over the lowest trunk_height_m of the true trunk, every 2 cm: the true one there and
+// the reconstruction's nearest.
+TrunkRadii CompareTrunkRadii(const SkeletonSamples& rec, const Tree& truth,
+                             const TruthScoreOptions& options) {
   const Branch& true_trunk = truth.trunk();
   const std::vector<double> arc = true_trunk.ArcLengths();
   double true_sum = 0.0, rec_sum = 0.0;
@@ -250,11 +252,80 @@ TruthScores ScoreAgainstTruth(const Tree& reconstruction, const Tree& truth,
     rec_sum += nearest.radius;
     ++count;
   }
+  TrunkRadii out;
   if (count > 0 && true_sum > 0) {
-    scores.true_trunk_radius_m = true_sum / count;
-    scores.trunk_radius_m = rec_sum / count;
-    scores.trunk_radius_error = std::abs(rec_sum / true_sum - 1.0);
+    out.true_m = true_sum / count;
+    out.reconstructed_m = rec_sum / count;
+    out.error = std::abs(rec_sum / true_sum - 1.0);
   }
+  return out;
+}
+
+}  // namespace
+
+void TruthScoreOptions::Validate() const {
+  reconstruction::CheckNonNegative("min_true_radius_m", min_true_radius_m);
+  reconstruction::CheckNonNegative("near_distance_m", near_distance_m);
+  reconstruction::CheckShare("found_share", found_share);
+  reconstruction::CheckPositive("sample_step_m", sample_step_m);
+  reconstruction::CheckNonNegative("trunk_height_m", trunk_height_m);
+}
+
+TruthScores ScoreAgainstTruth(const Tree& reconstruction, const Tree& truth,
+                              const TruthScoreOptions& options) {
+  options.Validate();
+  TruthScores scores;
+  const SkeletonSamples rec(reconstruction, options.sample_step_m);
+  const SkeletonSamples tru(truth, options.sample_step_m);
+  if (rec.empty() || tru.empty()) return scores;
+  scores.truth = ListBranches(truth);
+  for (BranchMatch& m : scores.truth) {
+    m.scored = ScoredTruth(truth, m.branch, options);
+    scores.true_total_length_m += m.length_m;
+  }
+  scores.reconstruction = ListBranches(reconstruction);
+  for (const BranchMatch& m : scores.reconstruction) scores.total_length_m += m.length_m;
+
+  const TruthSide truth_side = CompareTruthToReconstruction(tru, rec, truth, options);
+  scores.truth_to_reconstruction_m = truth_side.distance_m;
+  scores.thick_truth_to_reconstruction_m = truth_side.thick_distance_m;
+  scores.radius_error = truth_side.radius_error;
+  scores.true_length_m = truth_side.thick_length_m;
+  for (BranchMatch& m : scores.truth) {
+    truth_side.coverage.Match(m, options.found_share);
+    if (!m.scored) continue;
+    ++scores.true_branches;
+    scores.found += m.found;
+  }
+  scores.recall = Ratio(scores.found, scores.true_branches);
+
+  const ReconstructionSide rec_side =
+      CompareReconstructionToTruth(rec, tru, reconstruction, options);
+  scores.reconstruction_to_truth_m = rec_side.distance_m;
+  for (BranchMatch& m : scores.reconstruction) {
+    rec_side.coverage.Match(m, options.found_share);
+    // Not scored: correct, but along true wood thinner than the scored radius.
+    m.scored = !(m.found && m.matched >= 0 && !ScoredTruth(truth, m.matched, options));
+    if (!m.scored) continue;
+    // A branch along thin true wood claims none: where it leaves thick wood its start lies near
+    // that wood.
+    scores.length_m += rec_side.claimed[m.branch];
+    ++scores.reconstructed_branches;
+    scores.correct += m.found;
+  }
+  scores.precision = Ratio(scores.correct, scores.reconstructed_branches);
+  scores.mean_skeleton_distance_m =
+      0.5 * (scores.reconstruction_to_truth_m + scores.truth_to_reconstruction_m);
+  scores.thick_skeleton_distance_m =
+      0.5 * (scores.reconstruction_to_truth_m + scores.thick_truth_to_reconstruction_m);
+  scores.length_error = scores.true_length_m > 0
+                            ? (scores.length_m - scores.true_length_m) / scores.true_length_m
+                            : 0.0;
+
+  const TrunkRadii trunk = CompareTrunkRadii(rec, truth, options);
+  scores.trunk_radius_m = trunk.reconstructed_m;
+  scores.true_trunk_radius_m = trunk.true_m;
+  scores.trunk_radius_error = trunk.error;
   return scores;
 }
 

@@ -34,11 +34,14 @@
 namespace simtree::eval {
 
 struct TruthScoreOptions {
-  double min_true_radius_m = 0.01;
-  double near_distance_m = 0.03;
-  double found_share = 0.5;
-  double sample_step_m = 0.01;
-  double trunk_height_m = 1.0;
+  double min_true_radius_m = 0.01;  // metres: true branches with a thinner base are not scored
+  double near_distance_m = 0.03;    // metres beyond the true radius that still count as near
+  double found_share = 0.5;         // share of a branch's length near the other skeleton: found
+  double sample_step_m = 0.01;      // metres between skeleton samples
+  double trunk_height_m = 1.0;      // metres of the true trunk its radius is compared over
+
+  // Throws OptionError naming the first field out of range.
+  void Validate() const;
 };
 
 struct BranchMatch {
