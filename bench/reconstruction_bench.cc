@@ -208,8 +208,6 @@ std::vector<Variant> Variants() {
   add("no twig pruning", [](reconstruction::ReconstructionOptions& o) { o.prune = false; });
   add("no skeleton smoothing",
       [](reconstruction::ReconstructionOptions& o) { o.smoothing.iterations = 0; });
-  add("skeleton smoothing: 2 rounds",
-      [](reconstruction::ReconstructionOptions& o) { o.smoothing.iterations = 2; });
   add("skeleton smoothing: 8 rounds",
       [](reconstruction::ReconstructionOptions& o) { o.smoothing.iterations = 8; });
   add("no local radius fits",
