@@ -15,11 +15,11 @@
 
 #include "simtree/core/error.h"
 #include "simtree/core/units.h"
+#include "simtree/dynamics/live_pull.h"
 #include "simtree/io/image_io.h"
 #include "simtree/viewer/detail/camera.h"
 #include "simtree/viewer/detail/gl.h"
 #include "simtree/viewer/detail/gl_objects.h"
-#include "simtree/viewer/detail/live_pull.h"
 #include "simtree/viewer/detail/material_edit.h"
 #include "simtree/viewer/detail/picking.h"
 #include "simtree/viewer/marker_playback.h"
@@ -58,7 +58,7 @@ struct Viewer::Impl {
   GLFWwindow* window = nullptr;
   bool imgui_ready = false;
   std::unique_ptr<dynamics::TreeDynamics> sim;
-  LivePull pull;
+  dynamics::LivePull pull;
   std::unique_ptr<SceneRenderer> scene;
   std::string leaf_error;
   OrbitCamera orbit;
@@ -716,7 +716,7 @@ Viewer::Viewer(const Tree& tree, const SceneAssets& assets, const ViewerOptions&
   m.playing = !options.start_paused;
   m.sim = std::make_unique<dynamics::TreeDynamics>(tree, options.dynamics);
   m.wind_speed = static_cast<float>(options.dynamics.wind.mean_speed_mps);
-  if (options.pull) m.pull = LivePull(*m.sim, *options.pull);
+  if (options.pull) m.pull = dynamics::LivePull(*m.sim, *options.pull);
   m.Open();
   m.scene =
       std::make_unique<SceneRenderer>(tree, assets.foliage_or_null(), assets.leaves, options.scene);
@@ -768,7 +768,7 @@ bool Viewer::Frame() {
   if (m.playing || m.step_once) {
     const double dt = m.options.fixed_step || m.step_once ? 1.0 / m.options.fps
                                                           : std::clamp(wall_dt, 1e-4, 1.0 / 15.0);
-    AdvanceFrame(*m.sim, m.pull, dt);
+    dynamics::AdvanceFrame(*m.sim, m.pull, dt);
     m.step_once = false;
   }
   if (m.options.measured) {
