@@ -72,11 +72,15 @@ int FrameCount(double duration_s, double fps) {
   return static_cast<int>(std::floor(duration_s * fps + 1e-9)) + 1;
 }
 
-SimulationResult RunSimulation(const Tree& tree, const SimulationOptions& options,
-                               std::span<FrameRecorder* const> recorders) {
+void ValidateSimulation(const Tree& tree, const SimulationOptions& options) {
   options.Validate();
   if (options.pull) ValidateRope(tree, options.pull->rope, "pull");
   ValidateForSimulation(tree, "tree");
+}
+
+SimulationResult RunSimulation(const Tree& tree, const SimulationOptions& options,
+                               std::span<FrameRecorder* const> recorders) {
+  ValidateSimulation(tree, options);
 
   SimulationResult result;
   const auto start = std::chrono::steady_clock::now();

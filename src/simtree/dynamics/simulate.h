@@ -67,9 +67,12 @@ struct SimulationResult {
   double wall_seconds = 0.0;                             // wall-clock time of the run
 };
 
+// The checks RunSimulation makes before any work: options.Validate(), the pull's rope against the
+// tree (ValidateRope) and ValidateForSimulation(tree, "tree").
+void ValidateSimulation(const Tree& tree, const SimulationOptions& options);
+
 // Runs the simulation and hands every frame to the recorders. Throws InputError (before any work)
-// for options out of range (options.Validate()), a pull the tree cannot take, and a tree that
-// cannot be simulated.
+// as ValidateSimulation does.
 SimulationResult RunSimulation(const Tree& tree, const SimulationOptions& options,
                                std::span<FrameRecorder* const> recorders);
 
