@@ -215,6 +215,52 @@ Viewer::~Viewer() {
   }
 }
 
+// One frame of simulated time: 1 / fps with a fixed step or a single step, else the frame's wall
+// time (capped, so a slow frame does not jump the tree).
+void Viewer::Impl::AdvanceSimulation(double wall_dt) {
+  if (playing || step_once) {
+    const double dt =
+        options.fixed_step || step_once ? 1.0 / options.fps : std::clamp(wall_dt, 1e-4, 1.0 / 15.0);
+    dynamics::AdvanceFrame(*sim, pull, dt);
+    step_once = false;
+  }
+  if (options.measured) comparison = CompareMarkers(*options.measured, options.markers, *sim);
+}
+
+// The scene, its overlays and the panel, screenshots of the result, then the swap.
+void Viewer::Impl::DrawFrame() {
+  const CameraView view = SceneView();
+  SceneStyle frame_style = style;
+  frame_style.hovered_branch = hovered;
+  frame_style.selected_branch = drag == Drag::kGrab ? selected : -1;
+  scene->SetPose(*sim);
+  int fw = 0, fh = 0;
+  glfwGetFramebufferSize(window, &fw, &fh);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glViewport(0, 0, fw, fh);
+  scene->Draw(view, frame_style, ViewportX());
+  DrawOverlays(view);
+  DrawPanel();
+  ImGui::Render();
+  glViewport(0, 0, fw, fh);
+  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  for (const std::string& path : pending_screenshots) Screenshot(path);
+  pending_screenshots.clear();
+  glfwSwapBuffers(window);
+  stats.triangles = scene->triangle_count(frame_style.leaves);
+}
+
+void Viewer::Impl::CountFrame(double frame_s, double simulate_s, double draw_s, double wall_dt) {
+  ++stats.frames;
+  sum_frame += frame_s;
+  sum_simulate += simulate_s;
+  sum_draw += draw_s;
+  stats.mean_frame_ms = 1000.0 * sum_frame / stats.frames;
+  stats.mean_simulate_ms = 1000.0 * sum_simulate / stats.frames;
+  stats.mean_draw_ms = 1000.0 * sum_draw / stats.frames;
+  recent_frame_ms = 0.9 * recent_frame_ms + 0.1 * 1000.0 * wall_dt;
+}
+
 bool Viewer::Frame() {
   Impl& m = *impl_;
   if (m.quit || glfwWindowShouldClose(m.window)) return false;
@@ -222,60 +268,23 @@ bool Viewer::Frame() {
   const double wall_dt = Seconds(m.last_frame, start);
   m.last_frame = start;
   glfwPollEvents();
-
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();
+  // Input first (the script's or the user's), so the frame shows what it did.
   if (m.scripted()) {
     m.RunScript();
   } else {
     m.HandleRealInput();
   }
   if (m.drag == Drag::kNone) m.UpdateHover();
-
-  // Simulation.
   const auto sim_start = Clock::now();
-  if (m.playing || m.step_once) {
-    const double dt = m.options.fixed_step || m.step_once ? 1.0 / m.options.fps
-                                                          : std::clamp(wall_dt, 1e-4, 1.0 / 15.0);
-    dynamics::AdvanceFrame(*m.sim, m.pull, dt);
-    m.step_once = false;
-  }
-  if (m.options.measured) {
-    m.comparison = CompareMarkers(*m.options.measured, m.options.markers, *m.sim);
-  }
+  m.AdvanceSimulation(wall_dt);
   const auto draw_start = Clock::now();
-
-  // Drawing.
-  const CameraView view = m.SceneView();
-  SceneStyle style = m.style;
-  style.hovered_branch = m.hovered;
-  style.selected_branch = m.drag == Drag::kGrab ? m.selected : -1;
-  m.scene->SetPose(*m.sim);
-  int fw = 0, fh = 0;
-  glfwGetFramebufferSize(m.window, &fw, &fh);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  glViewport(0, 0, fw, fh);
-  m.scene->Draw(view, style, m.ViewportX());
-  m.DrawOverlays(view);
-  m.DrawPanel();
-  ImGui::Render();
-  glViewport(0, 0, fw, fh);
-  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-  for (const std::string& path : m.pending_screenshots) m.Screenshot(path);
-  m.pending_screenshots.clear();
-  glfwSwapBuffers(m.window);
+  m.DrawFrame();
   const auto end = Clock::now();
-
-  m.stats.triangles = m.scene->triangle_count(style.leaves);
-  ++m.stats.frames;
-  m.sum_frame += Seconds(start, end);
-  m.sum_simulate += Seconds(sim_start, draw_start);
-  m.sum_draw += Seconds(draw_start, end);
-  m.stats.mean_frame_ms = 1000.0 * m.sum_frame / m.stats.frames;
-  m.stats.mean_simulate_ms = 1000.0 * m.sum_simulate / m.stats.frames;
-  m.stats.mean_draw_ms = 1000.0 * m.sum_draw / m.stats.frames;
-  m.recent_frame_ms = 0.9 * m.recent_frame_ms + 0.1 * 1000.0 * wall_dt;
+  m.CountFrame(Seconds(start, end), Seconds(sim_start, draw_start), Seconds(draw_start, end),
+               wall_dt);
   if (m.scripted() && m.script_next >= m.options.script.size() && m.script_wait == 0 &&
       m.drag_frames_left == 0 && !m.quit) {
     // The script is done: the window stays for the user.

@@ -99,6 +99,9 @@ struct Viewer::Impl {
 
   // view.cc: the window, the frame, screenshots and overlays.
   void Open();
+  void AdvanceSimulation(double wall_dt);
+  void DrawFrame();
+  void CountFrame(double frame_s, double simulate_s, double draw_s, double wall_dt);
   void Reset();
   void SetWind(bool on);
   void SetLeaves(bool on);
