@@ -177,12 +177,7 @@ void RenderOptions::Validate() const {
   const auto check = [](bool ok, const std::string& field, const std::string& message) {
     dynamics::CheckOption(ok, "render options", field, message);
   };
-  check(width >= 1 && width <= 16384, "width",
-        fmt::format("expected 1-16384 pixels, got {}", width));
-  check(height >= 1 && height <= 16384, "height",
-        fmt::format("expected 1-16384 pixels, got {}", height));
-  check(samples >= 0 && samples <= 16, "samples",
-        fmt::format("expected 0 to 16 samples, got {}", samples));
+  ValidateFramebuffer(width, height, samples, "render options");
   check(std::isfinite(yaw_rad) && std::isfinite(pitch_rad), "yaw_rad",
         fmt::format("expected finite angles, got yaw {} and pitch {}", yaw_rad, pitch_rad));
   check(zoom > 0.0 && std::isfinite(zoom), "zoom", fmt::format("expected > 0, got {}", zoom));

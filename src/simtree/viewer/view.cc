@@ -19,6 +19,7 @@
 #include "simtree/viewer/detail/camera.h"
 #include "simtree/viewer/detail/gl.h"
 #include "simtree/viewer/detail/gl_objects.h"
+#include "simtree/viewer/detail/offscreen_context.h"
 #include "simtree/viewer/detail/viewer_impl.h"
 
 namespace simtree::viewer {
@@ -159,17 +160,9 @@ void Viewer::Impl::DrawOverlays(const CameraView& view) {
 }
 
 void ViewerOptions::Validate() const {
-  const auto check = [](bool ok, const std::string& field, const std::string& message) {
-    dynamics::CheckOption(ok, "viewer options", field, message);
-  };
-  check(width >= 1 && width <= 16384, "width",
-        fmt::format("expected 1-16384 pixels, got {}", width));
-  check(height >= 1 && height <= 16384, "height",
-        fmt::format("expected 1-16384 pixels, got {}", height));
-  check(samples >= 0 && samples <= 16, "samples",
-        fmt::format("expected 0 to 16 samples, got {}", samples));
-  check(fps > 0.0 && std::isfinite(fps), "fps",
-        fmt::format("expected a frame rate > 0, got {}", fps));
+  ValidateFramebuffer(width, height, samples, "viewer options");
+  dynamics::CheckOption(fps > 0.0 && std::isfinite(fps), "viewer options", "fps",
+                        fmt::format("expected a frame rate > 0, got {}", fps));
   scene.Validate();
   dynamics.Validate();
   if (pull) pull->Validate();

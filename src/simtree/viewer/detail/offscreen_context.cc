@@ -125,14 +125,18 @@ struct OffscreenContext::Impl {
   }
 };
 
-void OffscreenOptions::Validate() const {
-  const std::string source = "offscreen options";
+void ValidateFramebuffer(int width, int height, int samples, const std::string& source) {
   dynamics::CheckOption(width >= 1 && width <= 16384, source, "width",
                         fmt::format("expected 1-16384 pixels, got {}", width));
   dynamics::CheckOption(height >= 1 && height <= 16384, source, "height",
                         fmt::format("expected 1-16384 pixels, got {}", height));
   dynamics::CheckOption(samples >= 0 && samples <= 16, source, "samples",
                         fmt::format("expected 0 to 16 samples, got {}", samples));
+}
+
+void OffscreenOptions::Validate() const {
+  const std::string source = "offscreen options";
+  ValidateFramebuffer(width, height, samples, source);
   dynamics::CheckOption(
       backend == OffscreenBackend::kAuto || backend == OffscreenBackend::kEgl ||
           backend == OffscreenBackend::kXvfb,

@@ -24,6 +24,10 @@ struct OffscreenOptions {
   void Validate() const;
 };
 
+// The size and multisampling of a framebuffer, window or offscreen: 1 to 16384 pixels each way,
+// 0 to 16 samples. Throws InputError(source, "width" / "height" / "samples", ...) otherwise.
+void ValidateFramebuffer(int width, int height, int samples, const std::string& source);
+
 class OffscreenContext {
  public:
   // Makes the context current. Throws InputError for options out of range, and simtree::Error
