@@ -41,7 +41,7 @@ struct SimulationOptions {
   // accelerations held over a step stay smooth.
   double max_time_step_s = 0.0;
   std::optional<PullSchedule> pull;  // none: the tree only moves under wind (or gravity)
-  DynamicsOptions dynamics;
+  DynamicsOptions dynamics;          // the model's switches, its integrator and the wind
 
   // Throws InputError ("simulation options", the field) for a value out of range: a negative or
   // non-finite duration or step, a frame rate outside (0, 10000], more than 10 million frames, a

@@ -18,8 +18,8 @@
 namespace simtree::dynamics {
 
 struct WindOptions {
-  bool enabled = false;
-  double mean_speed_mps = 5.0;                           // at the top of the crown (m/s, >= 0)
+  bool enabled = false;         // off: no wind load, whatever the rest says
+  double mean_speed_mps = 5.0;  // at the top of the crown (m/s, >= 0)
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();  // blowing towards; made horizontal
   // Standard deviation of each velocity component over mean speed (>= 0; 0.1-0.3 near trees).
   double turbulence_intensity = 0.25;

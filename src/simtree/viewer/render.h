@@ -28,9 +28,9 @@ struct RenderOptions {
   int width = 1280;
   int height = 720;
   int samples = 4;  // multisample anti-aliasing samples per pixel (0 = off, at most 16)
-  OffscreenBackend backend = OffscreenBackend::kAuto;
-  SceneStyle style;
-  SceneOptions scene;
+  OffscreenBackend backend = OffscreenBackend::kAuto;  // kAuto: EGL, else Xvfb
+  SceneStyle style;                                    // leaves, grid, colouring, background
+  SceneOptions scene;                                  // tubes, bark, grid spacing, leaf detail
   // Orbit camera angles about the tree's centre (rad); the distance frames the whole tree.
   double yaw_rad = -1.5707963267948966;
   double pitch_rad = 0.15;

@@ -30,20 +30,20 @@ struct ViewerOptions {
   int height = 800;
   // Multisample anti-aliasing samples of the window (0 to 16; costly on a software rasteriser).
   int samples = 0;
-  bool vsync = false;  // wait for the display's refresh
-  std::string title = "simtree";
+  bool vsync = false;             // wait for the display's refresh
+  std::string title = "simtree";  // of the window
   // The style at the start (leaves, grid, colouring, background); the hovered and selected
   // branches follow the mouse.
   SceneStyle style;
-  SceneOptions scene;
-  dynamics::DynamicsOptions dynamics;
+  SceneOptions scene;                  // tubes, bark, grid spacing, leaf detail
+  dynamics::DynamicsOptions dynamics;  // the model, as `simulate` takes it
   // A pull test played from t = 0 (and after every reset), as `simulate --pull` plays it.
   std::optional<dynamics::PullSchedule> pull;
   // Simulation time per frame: 1 / fps (scripted runs, benchmarks; the CLI sets it for scripts)
   // or the wall time of the frame (interactive, capped at 1/15 s).
   bool fixed_step = false;
   double fps = 30.0;  // simulated frames per second with fixed_step and for a single step (> 0)
-  bool start_paused = false;
+  bool start_paused = false;  // the simulation waits for play (space)
   // Playback: measured markers (world frame) against the simulated `markers` of the same ids.
   std::optional<Trajectories> measured;
   std::vector<Marker> markers;       // drawn as dots; those on no branch of the tree are skipped

@@ -18,7 +18,7 @@ struct OffscreenOptions {
   int width = 1280;  // pixels, 1 to 16384
   int height = 720;  // pixels, 1 to 16384
   int samples = 4;   // multisample anti-aliasing samples per pixel (0 = off, at most 16)
-  OffscreenBackend backend = OffscreenBackend::kAuto;
+  OffscreenBackend backend = OffscreenBackend::kAuto;  // kAuto: EGL, else Xvfb
 
   // Throws InputError ("offscreen options", the field) for a value out of range.
   void Validate() const;
