@@ -1,12 +1,25 @@
 #pragma once
 // Hand-made trees for the dynamics tests, with closed-form answers in mind.
 
+#include <string>
 #include <vector>
 
+#include "simtree/core/error.h"
 #include "simtree/core/frames.h"
 #include "simtree/core/tree.h"
 
 namespace simtree::test {
+
+// The field the InputError `fn` throws names ("no error" when it throws none).
+template <typename Fn>
+std::string InputErrorField(Fn&& fn) {
+  try {
+    fn();
+  } catch (const InputError& e) {
+    return e.where();
+  }
+  return "no error";
+}
 
 // A straight branch from `base` along `direction` with `nodes` nodes over `length` metres.
 inline Branch StraightBranch(int id, int parent, int parent_node, const Eigen::Vector3d& base,

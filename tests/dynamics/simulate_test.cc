@@ -168,5 +168,39 @@ TEST(Simulation, BadOptionsAreRefusedBeforeAnyOutput) {
   EXPECT_TRUE(std::filesystem::is_empty(dir));
 }
 
+TEST(SimulationOptions, ValidateNamesTheBadField) {
+  const Tree tree = test::ThreeLevelTree();
+  EXPECT_NO_THROW(SimulationOptions{}.Validate());
+  const auto field = [&](auto change) {
+    SimulationOptions o;
+    o.pull = PullTwig(tree);
+    change(o);
+    return test::InputErrorField([&] { o.Validate(); });
+  };
+  EXPECT_EQ(field([](SimulationOptions& o) { o.duration_s = -2; }), "duration_s");
+  EXPECT_EQ(field([](SimulationOptions& o) { o.duration_s = 1e9; }), "duration_s");
+  EXPECT_EQ(field([](SimulationOptions& o) { o.fps = 0; }), "fps");
+  EXPECT_EQ(field([](SimulationOptions& o) { o.max_time_step_s = NAN; }), "max_time_step_s");
+  EXPECT_EQ(field([](SimulationOptions& o) { o.pull->hold_s = -1; }), "hold_s");
+  EXPECT_EQ(field([](SimulationOptions& o) { o.pull->release_s = 0.2; }), "release_s");
+  EXPECT_EQ(field([](SimulationOptions& o) { o.dynamics.max_threads = -1; }), "max_threads");
+  EXPECT_EQ(field([](SimulationOptions& o) { o.dynamics.wind.modes = 0; }), "modes");
+}
+
+TEST(AnimationOptions, ValidateNamesTheBadField) {
+  EXPECT_NO_THROW(AnimationOptions{}.Validate());
+  const auto field = [&](auto change) {
+    AnimationOptions o;
+    change(o);
+    return test::InputErrorField([&] { o.Validate(); });
+  };
+  EXPECT_EQ(field([](AnimationOptions& o) { o.mesh.sides = 2; }), "mesh.sides");
+  EXPECT_EQ(field([](AnimationOptions& o) { o.mesh.min_radius = -1e-3; }), "mesh.min_radius");
+  EXPECT_EQ(field([](AnimationOptions& o) { o.max_joints = 0; }), "max_joints");
+  EXPECT_EQ(field([](AnimationOptions& o) { o.max_keys = 0; }), "max_keys");
+  // The recorder refuses them when it is made, before a run.
+  EXPECT_THROW(AnimationRecorder("a.glb", {}, {.max_joints = -4}), InputError);
+}
+
 }  // namespace
 }  // namespace simtree::dynamics

@@ -548,6 +548,27 @@ TEST(TreeDynamics, BadInputIsRefusedClearly) {
   EXPECT_THROW(TreeDynamics(tree, options), InputError);
 }
 
+TEST(DynamicsOptions, ValidateNamesTheBadField) {
+  DynamicsOptions o;
+  EXPECT_NO_THROW(o.Validate());
+  const auto field = [&](auto change) {
+    DynamicsOptions bad;
+    change(bad);
+    return test::InputErrorField([&] { bad.Validate(); });
+  };
+  EXPECT_EQ(field([](DynamicsOptions& d) { d.integrator = static_cast<Integrator>(9); }),
+            "integrator");
+  EXPECT_EQ(field([](DynamicsOptions& d) { d.twist_stiffness_ratio = 0.0; }),
+            "twist_stiffness_ratio");
+  EXPECT_EQ(field([](DynamicsOptions& d) { d.twist_stiffness_ratio = NAN; }),
+            "twist_stiffness_ratio");
+  EXPECT_EQ(field([](DynamicsOptions& d) { d.max_threads = -1; }), "max_threads");
+  EXPECT_EQ(field([](DynamicsOptions& d) { d.wind.grid_cells = 0; }), "grid_cells");
+  // The simulation refuses them before building anything.
+  o.max_threads = -1;
+  EXPECT_THROW(TreeDynamics(test::ThreeLevelTree(), o), InputError);
+}
+
 TEST(PullTarget, ParsesBranchAndArcLength) {
   EXPECT_EQ(ParsePullTarget("12").branch, 12);
   EXPECT_LT(ParsePullTarget("12").arc_length, 0.0);

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "dynamics/dynamics_fixtures.h"
 #include "simtree/core/error.h"
 
 namespace simtree::dynamics {
@@ -128,8 +129,16 @@ TEST(Wind, BadOptionsAreRefused) {
        }) {
     WindOptions w = Windy();
     change(w);
+    EXPECT_THROW(w.Validate(), InputError);
     EXPECT_THROW(WindField(w, kMin, kMax), InputError);
   }
+  WindOptions w = Windy();
+  w.air_density_kg_m3 = -1;
+  EXPECT_EQ(test::InputErrorField([&] { w.Validate(); }), "air_density_kg_m3");
+  w = Windy();
+  w.length_scale_m = INFINITY;
+  EXPECT_EQ(test::InputErrorField([&] { w.Validate(); }), "length_scale_m");
+  EXPECT_NO_THROW(Windy().Validate());
 }
 
 }  // namespace

@@ -80,5 +80,21 @@ TEST(Foliage, BadOptionsAreRefused) {
   EXPECT_THROW(PlaceLeaves(tree, 0.0f, {}), InputError);
 }
 
+TEST(Foliage, ValidateNamesTheBadField) {
+  EXPECT_NO_THROW(FoliageOptions{}.Validate());
+  const auto field = [](auto change) {
+    FoliageOptions o;
+    change(o);
+    return test::InputErrorField([&] { o.Validate(); });
+  };
+  EXPECT_EQ(field([](FoliageOptions& o) { o.leaves_per_metre = INFINITY; }), "leaves_per_metre");
+  EXPECT_EQ(field([](FoliageOptions& o) { o.leaf_length_m = 0; }), "leaf_length_m");
+  EXPECT_EQ(field([](FoliageOptions& o) { o.start_fraction = -0.1; }), "start_fraction");
+  EXPECT_EQ(field([](FoliageOptions& o) { o.tilt_rad = NAN; }), "tilt_rad");
+  EXPECT_EQ(field([](FoliageOptions& o) { o.size_jitter = 1.5; }), "size_jitter");
+  EXPECT_EQ(field([](FoliageOptions& o) { o.angle_jitter_rad = -1; }), "angle_jitter_rad");
+  EXPECT_EQ(field([](FoliageOptions& o) { o.max_leaves = -1; }), "max_leaves");
+}
+
 }  // namespace
 }  // namespace simtree::viewer

@@ -183,7 +183,11 @@ TEST(LeafSimplify, ABadToleranceIsAnInputError) {
   const LeafModel in = GridBlade(2, Flat);
   for (double bad : {-0.01, std::nan(""), std::numeric_limits<double>::infinity()}) {
     EXPECT_THROW(SimplifyLeafModel(in, {.tolerance = bad}), InputError) << bad;
+    EXPECT_EQ(test::InputErrorField([&] { LeafSimplifyOptions{.tolerance = bad}.Validate(); }),
+              "tolerance");
   }
+  EXPECT_EQ(test::InputErrorField([] { LeafSimplifyOptions{.max_blade_vertices = -1}.Validate(); }),
+            "max_blade_vertices");
 }
 
 }  // namespace

@@ -7,8 +7,8 @@
 #include <gtest/gtest.h>
 
 #include "simtree/core/error.h"
+#include "simtree/dynamics/live_pull.h"
 #include "simtree/dynamics/recorders.h"
-#include "simtree/viewer/detail/live_pull.h"
 #include "viewer_fixtures.h"
 
 namespace simtree::viewer {
@@ -71,10 +71,10 @@ TEST(MarkerPlayback, ASimulatedRunPlayedBackAgainstItselfHasNoError) {
 
   // The viewer's stepping with the same pull: frame for frame the same motion.
   dynamics::TreeDynamics sim(tree, options.dynamics);
-  LivePull live(sim, pull);
+  dynamics::LivePull live(sim, pull);
   double worst = 0.0, moved = 0.0;
   for (int frame = 1; frame <= 60; ++frame) {
-    AdvanceFrame(sim, live, 1.0 / 30);
+    dynamics::AdvanceFrame(sim, live, 1.0 / 30);
     const MarkerComparison c = CompareMarkers(measured, markers, sim);
     ASSERT_EQ(c.markers.size(), markers.size()) << "frame " << frame;
     worst = std::max(worst, c.max_error_m);
@@ -87,8 +87,8 @@ TEST(MarkerPlayback, ASimulatedRunPlayedBackAgainstItselfHasNoError) {
   Material stiffer = other.material(3);
   stiffer.SetStiffness(stiffer.stiffness * 4);
   other.SetMaterial(3, stiffer);
-  LivePull other_pull(other, pull);
-  for (int frame = 1; frame <= 20; ++frame) AdvanceFrame(other, other_pull, 1.0 / 30);
+  dynamics::LivePull other_pull(other, pull);
+  for (int frame = 1; frame <= 20; ++frame) dynamics::AdvanceFrame(other, other_pull, 1.0 / 30);
   EXPECT_GT(CompareMarkers(measured, markers, other).rms_error_m, 1e-3);
 }
 

@@ -84,5 +84,13 @@ TEST(Picking, ThinTwigsAreCaughtWithinAFewPixels) {
   EXPECT_FALSE(PickBranch(tree, nodes, view, view.PixelRay(215, 200)).has_value());
 }
 
+TEST(Picking, ValidateNamesTheBadField) {
+  EXPECT_NO_THROW(PickOptions{}.Validate());
+  EXPECT_EQ(test::InputErrorField([] { PickOptions{.min_radius_px = -1}.Validate(); }),
+            "min_radius_px");
+  EXPECT_EQ(test::InputErrorField([] { PickOptions{.min_radius_px = NAN}.Validate(); }),
+            "min_radius_px");
+}
+
 }  // namespace
 }  // namespace simtree::viewer

@@ -161,5 +161,32 @@ TEST(Render, FramesBecomeAVideo) {
   EXPECT_FALSE(std::filesystem::exists(dir / "bad.mp4"));
 }
 
+TEST(Render, BadOptionsAreRefusedBeforeAnyWork) {
+  EXPECT_NO_THROW(RenderOptions{}.Validate());
+  const auto field = [](auto change) {
+    RenderOptions o;
+    change(o);
+    return test::InputErrorField([&] { o.Validate(); });
+  };
+  EXPECT_EQ(field([](RenderOptions& o) { o.width = 0; }), "width");
+  EXPECT_EQ(field([](RenderOptions& o) { o.samples = 17; }), "samples");
+  EXPECT_EQ(field([](RenderOptions& o) { o.pitch_rad = NAN; }), "yaw_rad");
+  EXPECT_EQ(field([](RenderOptions& o) { o.zoom = 0; }), "zoom");
+  EXPECT_EQ(field([](RenderOptions& o) { o.intrinsics = CameraIntrinsics{}; }), "width, height");
+  EXPECT_EQ(field([](RenderOptions& o) { o.scene.grid_spacing_m = 0; }), "grid_spacing_m");
+  EXPECT_EQ(field([](RenderOptions& o) { o.backend = static_cast<OffscreenBackend>(5); }),
+            "backend");
+  const auto dir = test::TempDir();
+  RenderOptions bad;
+  bad.zoom = -1;
+  EXPECT_THROW(RenderSimulation(test::ViewerTree(), ShortPull(), nullptr, {}, bad, dir / "frames"),
+               InputError);
+  dynamics::SimulationOptions no_frames = ShortPull();
+  no_frames.fps = 0;
+  EXPECT_THROW(RenderSimulation(test::ViewerTree(), no_frames, nullptr, {}, {}, dir / "frames"),
+               InputError);
+  EXPECT_FALSE(std::filesystem::exists(dir / "frames"));
+}
+
 }  // namespace
 }  // namespace simtree::viewer

@@ -56,10 +56,12 @@ TEST(Script, ParsesEveryAction) {
   EXPECT_EQ(actions[5].verb, ScriptVerb::kDragBy);
   EXPECT_EQ(actions[5].numbers, (std::vector<double>{-5, 7, 3}));
   EXPECT_EQ(actions[7].text, "out/a.png");
-  EXPECT_EQ(actions[15].text, "on");
+  EXPECT_TRUE(actions[15].on);
   EXPECT_EQ(actions[16].numbers, (std::vector<double>{7.5}));
   EXPECT_EQ(actions[18].verb, ScriptVerb::kMaterial);
-  EXPECT_EQ(actions[18].text, "level damping");
+  EXPECT_FALSE(actions[17].on);
+  EXPECT_EQ(actions[18].scope, MaterialScope::kLevel);
+  EXPECT_EQ(actions[18].property, MaterialProperty::kDamping);
   EXPECT_EQ(actions[18].branch, 2);
   EXPECT_EQ(actions[21].verb, ScriptVerb::kQuit);
 }

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/tree_fixtures.h"
+#include "dynamics/dynamics_fixtures.h"
 #include "simtree/core/tree.h"
 #include "test_util.h"
 

@@ -91,10 +91,164 @@ Eigen::Vector3d ToDemo(const Eigen::Vector3d& p, const LegacyOptions& o) {
 }
 
 struct LegacyBlock {
+  int id = 0;
   int line = 0;                               // where the block starts, for errors
   std::vector<std::pair<int, int>> children;  // (child id, node index)
   std::vector<Node> nodes;
 };
+
+// The header "RowMax=<branches>": how many branch blocks follow.
+int ReadRowMax(LineReader& in) {
+  const int header_line = in.line_number();
+  const std::vector<std::string> header = in.Next("the header \"RowMax=<branches>\"");
+  if (header.size() != 1 || header[0].rfind("RowMax=", 0) != 0) {
+    in.Fail(header_line, "expected the header \"RowMax=<number of branches>\"");
+  }
+  const int count = in.Integer(header[0].substr(7), header_line, "RowMax");
+  if (count <= 0) in.Fail(header_line, fmt::format("expected RowMax >= 1, got {}", count));
+  return count;
+}
+
+// The block's child lines "<child id> <node index>".
+void ReadChildren(LineReader& in, int child_count, int node_count, int count, LegacyBlock& block) {
+  const int id = block.id;
+  for (int c = 0; c < child_count; ++c) {
+    const int line = in.line_number();
+    const auto words = in.Next(fmt::format("child {} of branch {}", c, id));
+    if (words.size() != 2) {
+      in.Fail(line,
+              fmt::format("expected \"<child id> <node index>\" for child {} of branch {}", c, id));
+    }
+    const int child = in.Integer(words[0], line, "the child id");
+    const int at = in.Integer(words[1], line, "the node index");
+    if (child < 0 || child >= count || child == id) {
+      in.Fail(line, fmt::format("child id {} of branch {} is out of range [0, {}]", child, id,
+                                count - 1));
+    }
+    if (at < 0 || at >= node_count) {
+      in.Fail(line, fmt::format("child {} of branch {} starts at node {}, but branch {} has {} "
+                                "nodes (expected an index in [0, {}])",
+                                child, id, at, id, node_count, node_count - 1));
+    }
+    block.children.emplace_back(child, at);
+  }
+}
+
+// The block's node lines "x y z radius", in simtree's frame and units.
+void ReadNodes(LineReader& in, int node_count, const LegacyOptions& options, LegacyBlock& block) {
+  for (int n = 0; n < node_count; ++n) {
+    const int line = in.line_number();
+    const auto words = in.Next(fmt::format("node {} of branch {} (\"x y z radius\")", n, block.id));
+    if (words.size() != 4) {
+      in.Fail(line, fmt::format("expected 4 numbers \"x y z radius\" for node {} of branch {}, "
+                                "got {} words",
+                                n, block.id, words.size()));
+    }
+    Node node;
+    const Eigen::Vector3d p(in.Number(words[0], line, "x"), in.Number(words[1], line, "y"),
+                            in.Number(words[2], line, "z"));
+    node.position = FromDemo(p, options);
+    node.radius = in.Number(words[3], line, "the radius") * options.scale;
+    block.nodes.push_back(node);
+  }
+}
+
+// Branch block b of `count`: "<id> <nodes> <children> <colour>", then its children and nodes.
+LegacyBlock ReadBlock(LineReader& in, int b, int count, const LegacyOptions& options,
+                      const std::map<int, LegacyBlock>& blocks) {
+  LegacyBlock block;
+  block.line = in.line_number();
+  const std::vector<std::string> head =
+      in.Next(fmt::format("the header of branch block {} of {}", b + 1, count));
+  if (head.size() != 4) {
+    in.Fail(block.line, fmt::format("expected \"<id> <nodes> <children> <colour>\" for branch "
+                                    "block {} of {}, got {} words",
+                                    b + 1, count, head.size()));
+  }
+  const int id = in.Integer(head[0], block.line, "the branch id");
+  const int node_count = in.Integer(head[1], block.line, "the node count");
+  const int child_count = in.Integer(head[2], block.line, "the child count");
+  if (id < 0 || id >= count) {
+    in.Fail(block.line, fmt::format("expected a branch id in [0, {}], got {}", count - 1, id));
+  }
+  if (blocks.count(id)) in.Fail(block.line, fmt::format("branch id {} appears twice", id));
+  if (node_count < 2) {
+    in.Fail(block.line,
+            fmt::format("expected at least 2 nodes for branch {}, got {}", id, node_count));
+  }
+  if (child_count < 0) {
+    in.Fail(block.line, fmt::format("expected a child count >= 0, got {}", child_count));
+  }
+  block.id = id;
+  ReadChildren(in, child_count, node_count, count, block);
+  ReadNodes(in, node_count, options, block);
+  return block;
+}
+
+// Every branch's parent (-1: none) and the node of the parent it starts at, from the child lists.
+struct LegacyLinks {
+  std::vector<int> parent, parent_node;
+};
+
+LegacyLinks LinkParents(const std::map<int, LegacyBlock>& blocks, int count, const LineReader& in) {
+  LegacyLinks links{std::vector<int>(count, -1), std::vector<int>(count, 0)};
+  for (const auto& [id, block] : blocks) {
+    for (const auto& [child, at] : block.children) {
+      if (links.parent[child] != -1) {
+        in.Fail(block.line, fmt::format("branch {} is listed as a child of both {} and {}", child,
+                                        links.parent[child], id));
+      }
+      links.parent[child] = id;
+      links.parent_node[child] = at;
+    }
+  }
+  return links;
+}
+
+// simtree's branch order: depth first from the trunk, or the file's own order when it lists
+// every parent before its children. order[new id] = old id.
+struct LegacyOrder {
+  std::vector<int> order, new_id;
+};
+
+LegacyOrder BranchOrder(const std::map<int, LegacyBlock>& blocks, const LegacyLinks& links,
+                        int count, const std::string& source) {
+  // Exactly one branch (the trunk) has no parent.
+  std::vector<int> roots;
+  for (int id = 0; id < count; ++id) {
+    if (links.parent[id] == -1) roots.push_back(id);
+  }
+  if (roots.size() != 1) {
+    throw InputError(source, "",
+                     fmt::format("expected exactly one trunk (a branch that is nobody's child), "
+                                 "found {}",
+                                 roots.size()));
+  }
+  LegacyOrder o{{}, std::vector<int>(count, -1)};
+  std::vector<int> stack = {roots[0]};
+  while (!stack.empty()) {
+    const int id = stack.back();
+    stack.pop_back();
+    if (o.new_id[id] != -1) continue;
+    o.new_id[id] = static_cast<int>(o.order.size());
+    o.order.push_back(id);
+    const auto& children = blocks.at(id).children;
+    for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back(it->first);
+  }
+  if (static_cast<int>(o.order.size()) != count) {
+    throw InputError(source, "", "the child lists do not connect every branch to the trunk");
+  }
+  bool identity = true;
+  for (int i = 0; i < count; ++i) identity = identity && links.parent[i] < i;
+  if (identity) {
+    o.order.clear();
+    for (int i = 0; i < count; ++i) {
+      o.order.push_back(i);
+      o.new_id[i] = i;
+    }
+  }
+  return o;
+}
 
 }  // namespace
 
@@ -111,138 +265,28 @@ Tree ReadLegacyTree(const std::filesystem::path& path, const LegacyOptions& opti
   }
   const std::string source = path.string();
   LineReader in(ReadFile(path), source);
-  const int header_line = in.line_number();
-  const std::vector<std::string> header = in.Next("the header \"RowMax=<branches>\"");
-  if (header.size() != 1 || header[0].rfind("RowMax=", 0) != 0) {
-    in.Fail(header_line, "expected the header \"RowMax=<number of branches>\"");
-  }
-  const int count = in.Integer(header[0].substr(7), header_line, "RowMax");
-  if (count <= 0) in.Fail(header_line, fmt::format("expected RowMax >= 1, got {}", count));
-
+  const int count = ReadRowMax(in);
   std::map<int, LegacyBlock> blocks;
   for (int b = 0; b < count; ++b) {
-    LegacyBlock block;
-    block.line = in.line_number();
-    const std::vector<std::string> head =
-        in.Next(fmt::format("the header of branch block {} of {}", b + 1, count));
-    if (head.size() != 4) {
-      in.Fail(block.line, fmt::format("expected \"<id> <nodes> <children> <colour>\" for branch "
-                                      "block {} of {}, got {} words",
-                                      b + 1, count, head.size()));
-    }
-    const int id = in.Integer(head[0], block.line, "the branch id");
-    const int node_count = in.Integer(head[1], block.line, "the node count");
-    const int child_count = in.Integer(head[2], block.line, "the child count");
-    if (id < 0 || id >= count) {
-      in.Fail(block.line, fmt::format("expected a branch id in [0, {}], got {}", count - 1, id));
-    }
-    if (blocks.count(id)) in.Fail(block.line, fmt::format("branch id {} appears twice", id));
-    if (node_count < 2) {
-      in.Fail(block.line,
-              fmt::format("expected at least 2 nodes for branch {}, got {}", id, node_count));
-    }
-    if (child_count < 0) {
-      in.Fail(block.line, fmt::format("expected a child count >= 0, got {}", child_count));
-    }
-    for (int c = 0; c < child_count; ++c) {
-      const int line = in.line_number();
-      const auto words = in.Next(fmt::format("child {} of branch {}", c, id));
-      if (words.size() != 2) {
-        in.Fail(line, fmt::format("expected \"<child id> <node index>\" for child {} of branch {}",
-                                  c, id));
-      }
-      const int child = in.Integer(words[0], line, "the child id");
-      const int at = in.Integer(words[1], line, "the node index");
-      if (child < 0 || child >= count || child == id) {
-        in.Fail(line, fmt::format("child id {} of branch {} is out of range [0, {}]", child, id,
-                                  count - 1));
-      }
-      if (at < 0 || at >= node_count) {
-        in.Fail(line, fmt::format("child {} of branch {} starts at node {}, but branch {} has {} "
-                                  "nodes (expected an index in [0, {}])",
-                                  child, id, at, id, node_count, node_count - 1));
-      }
-      block.children.emplace_back(child, at);
-    }
-    for (int n = 0; n < node_count; ++n) {
-      const int line = in.line_number();
-      const auto words = in.Next(fmt::format("node {} of branch {} (\"x y z radius\")", n, id));
-      if (words.size() != 4) {
-        in.Fail(line, fmt::format("expected 4 numbers \"x y z radius\" for node {} of branch {}, "
-                                  "got {} words",
-                                  n, id, words.size()));
-      }
-      Node node;
-      const Eigen::Vector3d p(in.Number(words[0], line, "x"), in.Number(words[1], line, "y"),
-                              in.Number(words[2], line, "z"));
-      node.position = FromDemo(p, options);
-      node.radius = in.Number(words[3], line, "the radius") * options.scale;
-      block.nodes.push_back(node);
-    }
-    blocks.emplace(id, std::move(block));
+    LegacyBlock block = ReadBlock(in, b, count, options, blocks);
+    blocks.emplace(block.id, std::move(block));
   }
   if (!in.AtEnd()) {
     in.Fail(in.line_number(),
             fmt::format("expected the end of the file after {} branches (RowMax)", count));
   }
-
-  // Parent links from the child lists; exactly one branch (the trunk) has none.
-  std::vector<int> parent(count, -1), parent_node(count, 0);
-  for (const auto& [id, block] : blocks) {
-    for (const auto& [child, at] : block.children) {
-      if (parent[child] != -1) {
-        in.Fail(block.line, fmt::format("branch {} is listed as a child of both {} and {}", child,
-                                        parent[child], id));
-      }
-      parent[child] = id;
-      parent_node[child] = at;
-    }
-  }
-  std::vector<int> roots;
-  for (int id = 0; id < count; ++id) {
-    if (parent[id] == -1) roots.push_back(id);
-  }
-  if (roots.size() != 1) {
-    throw InputError(source, "",
-                     fmt::format("expected exactly one trunk (a branch that is nobody's child), "
-                                 "found {}",
-                                 roots.size()));
-  }
-
-  // Depth-first order from the trunk; it is the identity for files that list parents first.
-  std::vector<int> order, new_id(count, -1);
-  std::vector<int> stack = {roots[0]};
-  while (!stack.empty()) {
-    const int id = stack.back();
-    stack.pop_back();
-    if (new_id[id] != -1) continue;
-    new_id[id] = static_cast<int>(order.size());
-    order.push_back(id);
-    const auto& children = blocks.at(id).children;
-    for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back(it->first);
-  }
-  if (static_cast<int>(order.size()) != count) {
-    throw InputError(source, "", "the child lists do not connect every branch to the trunk");
-  }
-  bool identity = true;
-  for (int i = 0; i < count; ++i) identity = identity && parent[i] < i;
-  if (identity) {
-    order.clear();
-    for (int i = 0; i < count; ++i) {
-      order.push_back(i);
-      new_id[i] = i;
-    }
-  }
+  const LegacyLinks links = LinkParents(blocks, count, in);
+  const LegacyOrder order = BranchOrder(blocks, links, count, source);
 
   Tree tree;
   tree.metadata.source = fmt::format("legacy {}", path.filename().string());
   tree.branches.resize(count);
   for (int i = 0; i < count; ++i) {
-    const int old = order[i];
+    const int old = order.order[i];
     Branch& b = tree.branches[i];
     b.id = i;
-    b.parent = parent[old] < 0 ? -1 : new_id[parent[old]];
-    b.parent_node = parent_node[old];
+    b.parent = links.parent[old] < 0 ? -1 : order.new_id[links.parent[old]];
+    b.parent_node = links.parent_node[old];
     b.nodes = blocks.at(old).nodes;
   }
   AssignLevels(tree);

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "simtree/core/error.h"
+#include "simtree/dynamics/detail/check_option.h"
 #include "simtree/io/capture.h"
 
 namespace simtree::dynamics {
@@ -201,9 +202,22 @@ void MarkerTrackWriter::End() {
 
 // ---- glTF animation
 
+void AnimationOptions::Validate() const {
+  const std::string source = "animation options";
+  CheckOption(mesh.sides >= 3, source, "mesh.sides",
+              fmt::format("expected 3 or more sides, got {}", mesh.sides));
+  CheckOption(std::isfinite(mesh.min_radius) && mesh.min_radius >= 0.0, source, "mesh.min_radius",
+              fmt::format("expected a radius >= 0 m, got {}", mesh.min_radius));
+  CheckOption(max_joints >= 1 && max_joints <= kMaxGltfJoints, source, "max_joints",
+              fmt::format("expected 1 to {} joints, got {}", kMaxGltfJoints, max_joints));
+  CheckOption(max_keys >= 1, source, "max_keys", fmt::format("expected >= 1, got {}", max_keys));
+}
+
 AnimationRecorder::AnimationRecorder(std::filesystem::path path, std::vector<Marker> markers,
                                      AnimationOptions options)
-    : path_(std::move(path)), markers_(std::move(markers)), options_(options) {}
+    : path_(std::move(path)), markers_(std::move(markers)), options_(options) {
+  options_.Validate();
+}
 
 void AnimationRecorder::Begin(const TreeDynamics& sim, int frame_count, double fps) {
   const Tree& tree = sim.tree();

@@ -77,18 +77,23 @@ class MarkerTrackWriter : public FrameRecorder {
 };
 
 struct AnimationOptions {
+  // The tube mesh the joints skin (sides >= 3, min_radius >= 0 m).
   TubeMeshOptions mesh = {.sides = 8, .caps = true, .min_radius = 1e-4};
-  // Joints: one per node while the tree has at most this many nodes, else every k-th node of
-  // each branch (and its tip), vertices in between blending the two nearest.
+  // Joints (1 to kMaxGltfJoints): one per node while the tree has at most this many nodes, else
+  // every k-th node of each branch (and its tip), vertices in between blending the two nearest.
   int max_joints = 16384;
-  // Joint tracks kept in memory (joints x frames); fewer joints when a run is long.
+  // Joint keys kept in memory (joints x frames, >= 1); fewer joints when a run is long.
   int64_t max_keys = 8'000'000;
   bool markers = true;  // animate the markers as empty nodes too
+
+  // Throws InputError ("animation options", the field) for a value out of range.
+  void Validate() const;
 };
 
-// Collects joint transforms every frame; Write() makes the glTF file.
+// Collects joint transforms every frame; End() writes the glTF file.
 class AnimationRecorder : public FrameRecorder {
  public:
+  // Throws InputError for options out of range (options.Validate()).
   AnimationRecorder(std::filesystem::path path, std::vector<Marker> markers,
                     AnimationOptions options = {});
   void Begin(const TreeDynamics& sim, int frame_count, double fps) override;

@@ -25,6 +25,10 @@ Eigen::Vector3d TangentAt(const Branch& branch, double s) {
 
 }  // namespace
 
+const char* ToString(Rope::Mode mode) {
+  return mode == Rope::Mode::kForce ? "force" : "displacement";
+}
+
 double ValidateRope(const Tree& tree, const Rope& rope, const std::string& source) {
   if (rope.branch < 0 || rope.branch >= tree.size()) {
     throw InputError(

@@ -23,6 +23,9 @@ struct Rope {
   double displacement_m = 0.0;  // kDisplacement: static displacement towards the anchor (m)
 };
 
+// "force", "displacement".
+const char* ToString(Rope::Mode mode);
+
 // The rope's arc length on its branch (the tip for a negative value). Throws InputError naming
 // `source` when the branch does not exist, the arc length is past the tip or a value is not finite
 // or negative.

@@ -1,6 +1,5 @@
 #include "simtree/dynamics/simulate.h"
 
-#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -9,20 +8,33 @@
 
 #include "simtree/core/error.h"
 #include "simtree/core/progress.h"
+#include "simtree/dynamics/detail/check_option.h"
+#include "simtree/dynamics/live_pull.h"
 
 namespace simtree::dynamics {
 namespace {
 
 void Check(bool ok, const std::string& field, const std::string& message) {
-  if (!ok) throw InputError("simulation options", field, message);
+  CheckOption(ok, "simulation options", field, message);
 }
 
-double HighestFrequency(const Tree& tree) {
-  double f = 0.0;
-  for (const Branch& b : tree.branches) {
-    for (const Mode& m : b.material->modes) f = std::max(f, m.frequency_hz);
+// Steps every frame after the first (the pull set before each step) and hands each frame to the
+// recorders.
+void RecordFrames(TreeDynamics& sim, LivePull& pull, const FrameSplit& split, int frames,
+                  double frame_dt, std::span<FrameRecorder* const> recorders) {
+  Progress progress("simulate", frames, "frames");
+  for (int frame = 0; frame < frames; ++frame) {
+    if (frame > 0) {
+      for (int s = 0; s < split.steps; ++s) {
+        pull.Apply(sim);
+        sim.Step(split.dt);
+      }
+    }
+    const double t = frame * frame_dt;
+    for (FrameRecorder* r : recorders) r->Record(frame, t, sim);
+    progress.Advance();
   }
-  return f;
+  progress.Done();
 }
 
 }  // namespace
@@ -35,96 +47,70 @@ double PullSchedule::Factor(double time_s) const {
   return x * x * (3.0 - 2.0 * x);
 }
 
+void PullSchedule::Validate() const {
+  CheckOption(std::isfinite(hold_s) && hold_s >= 0.0, "pull schedule", "hold_s",
+              fmt::format("expected the time the pull is full (hold) >= 0 s, got {}", hold_s));
+  CheckOption(
+      std::isfinite(release_s) && release_s >= hold_s, "pull schedule", "release_s",
+      fmt::format("expected the release time >= the hold time ({} s), got {}", hold_s, release_s));
+}
+
+void SimulationOptions::Validate() const {
+  Check(std::isfinite(duration_s) && duration_s >= 0.0, "duration_s",
+        fmt::format("expected a duration >= 0 s, got {}", duration_s));
+  Check(std::isfinite(fps) && fps > 0.0 && fps <= 10000.0, "fps",
+        fmt::format("expected a frame rate in (0, 10000] per second, got {}", fps));
+  Check(std::isfinite(max_time_step_s) && max_time_step_s >= 0.0, "max_time_step_s",
+        fmt::format("expected a step >= 0 s (0 = automatic), got {}", max_time_step_s));
+  Check(duration_s * fps <= 1e7, "duration_s",
+        fmt::format("expected at most 10 million frames, got {:.0f}", duration_s * fps));
+  if (pull) pull->Validate();
+  dynamics.Validate();
+}
+
 int FrameCount(double duration_s, double fps) {
   return static_cast<int>(std::floor(duration_s * fps + 1e-9)) + 1;
 }
 
+void ValidateSimulation(const Tree& tree, const SimulationOptions& options) {
+  options.Validate();
+  if (options.pull) ValidateRope(tree, options.pull->rope, "pull");
+  ValidateForSimulation(tree, "tree");
+}
+
 SimulationResult RunSimulation(const Tree& tree, const SimulationOptions& options,
                                std::span<FrameRecorder* const> recorders) {
-  Check(std::isfinite(options.duration_s) && options.duration_s >= 0.0, "duration_s",
-        fmt::format("expected a duration >= 0 s, got {}", options.duration_s));
-  Check(std::isfinite(options.fps) && options.fps > 0.0 && options.fps <= 10000.0, "fps",
-        fmt::format("expected a frame rate in (0, 10000] per second, got {}", options.fps));
-  Check(std::isfinite(options.max_time_step_s) && options.max_time_step_s >= 0.0, "max_time_step_s",
-        fmt::format("expected a step >= 0 s (0 = automatic), got {}", options.max_time_step_s));
-  Check(options.duration_s * options.fps <= 1e7, "duration_s",
-        fmt::format("expected at most 10 million frames, got {:.0f}",
-                    options.duration_s * options.fps));
-  if (options.pull) {
-    const PullSchedule& p = *options.pull;
-    Check(std::isfinite(p.hold_s) && p.hold_s >= 0.0, "hold_s",
-          fmt::format("expected the time the pull is full (hold) >= 0 s, got {}", p.hold_s));
-    Check(std::isfinite(p.release_s) && p.release_s >= p.hold_s, "release_s",
-          fmt::format("expected the release time >= the hold time ({} s), got {}", p.hold_s,
-                      p.release_s));
-    ValidateRope(tree, p.rope, "pull");
-  }
-  ValidateForSimulation(tree, "tree");
+  ValidateSimulation(tree, options);
 
   SimulationResult result;
   const auto start = std::chrono::steady_clock::now();
   TreeDynamics sim(tree, options.dynamics);
   const double frame_dt = 1.0 / options.fps;
-  const double max_dt = options.max_time_step_s > 0.0 ? options.max_time_step_s
-                                                      : 1.0 / (20.0 * HighestFrequency(sim.tree()));
-  const int substeps = std::max(1, static_cast<int>(std::ceil(frame_dt / max_dt - 1e-9)));
-  const double dt = frame_dt / substeps;
-  result.time_step_s = dt;
+  const FrameSplit split =
+      SplitFrame(frame_dt, options.max_time_step_s > 0.0 ? options.max_time_step_s
+                                                         : AutomaticMaxStep(sim.tree()));
+  result.time_step_s = split.dt;
   result.frames = FrameCount(options.duration_s, options.fps);
 
   // The rope pulls with its full tension scaled by the schedule; a displacement pull is turned
   // into the tension that reaches it from rest.
-  int rope_id = -1;
-  Rope rope;
-  double full_tension = 0.0;
+  LivePull pull;
   if (options.pull) {
-    rope = options.pull->rope;
-    rope_id = sim.AttachRope(rope);
-    full_tension = sim.RopeTension(rope_id);
-    sim.ReleaseRope(rope_id);
-    rope_id = -1;
-    rope.mode = Rope::Mode::kForce;
-    result.pull_tension_n = full_tension;
+    pull = LivePull(sim, *options.pull);
+    result.pull_tension_n = pull.full_tension_n();
+    const Rope& rope = options.pull->rope;
     const double s = rope.arc_length < 0.0 ? tree.branches[rope.branch].Length() : rope.arc_length;
     result.pull_point = tree.branches[rope.branch].PointAt(s);
   }
-  auto apply_pull = [&](double t) {
-    if (!options.pull) return;
-    const double factor = options.pull->Factor(t);
-    if (factor <= 0.0) {
-      if (rope_id >= 0) sim.ReleaseRope(rope_id);
-      rope_id = -1;
-      return;
-    }
-    rope.force_n = factor * full_tension;
-    if (rope_id < 0) {
-      rope_id = sim.AttachRope(rope);
-    } else {
-      sim.UpdateRope(rope_id, rope);
-    }
-  };
 
   for (FrameRecorder* r : recorders) r->Begin(sim, result.frames, options.fps);
-  Progress progress("simulate", result.frames, "frames");
-  for (int frame = 0; frame < result.frames; ++frame) {
-    if (frame > 0) {
-      for (int s = 0; s < substeps; ++s) {
-        // The load of a step is the schedule at its start.
-        apply_pull(sim.time());
-        sim.Step(dt);
-      }
-    }
-    const double t = frame * frame_dt;
-    for (FrameRecorder* r : recorders) r->Record(frame, t, sim);
-    progress.Advance();
-  }
-  progress.Done();
+  RecordFrames(sim, pull, split, result.frames, frame_dt, recorders);
   for (FrameRecorder* r : recorders) r->End();
   result.steps = sim.steps();
   result.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   spdlog::debug("simulated {} frames, {} steps of {:.4g} s in {:.3g} s", result.frames,
-                result.steps, dt, result.wall_seconds);
+                result.steps, split.dt, result.wall_seconds);
   return result;
 }
 

@@ -26,6 +26,10 @@
 // precomputed, so deforming a node is a few multiply-adds and the step is bound by memory
 // bandwidth (docs/benchmarks.md, "Dynamics").
 //
+// The parts, in detail/: branch_model.h (the constants), branch_mechanics.h (mass distribution and
+// participations), modal_step.h (the oscillators), pose.h (where branches and points are),
+// node_deform.h (the node pass), loads.h and ropes.h (external loads), scheduler.h (the order).
+//
 // Typical use (the CLI's `simulate`, the viewer):
 //   TreeDynamics sim(tree);
 //   const int rope = sim.AttachRope({.branch = 3, .anchor = {2, 0, 0}, .force_n = 100});
@@ -49,7 +53,7 @@
 namespace simtree::dynamics {
 
 struct DynamicsOptions {
-  Integrator integrator = Integrator::kExact;
+  Integrator integrator = Integrator::kExact;  // how each modal oscillator is stepped
   // Children feel the acceleration of their base (their parent's attachment node).
   bool base_excitation = true;
   // Loads on a branch reach its ancestors as a force and a moment at each attachment.
@@ -58,15 +62,19 @@ struct DynamicsOptions {
   // from its rest geometry before anything else happens. Off by default: a scanned tree's rest
   // geometry already is its shape under gravity.
   bool gravity = false;
-  // Torsional over bending stiffness of a branch, per length squared: k_twist = ratio L^2 k.
+  // Torsional stiffness of a branch over L^2 times its bending stiffness (> 0, no unit):
+  // k_twist = ratio L^2 k (N m per rad).
   double twist_stiffness_ratio = 0.04;
-  // The authors' released demo does not give its three modes one frequency: it uses about
-  // {0.95 f, 1.05 f, f} with damping {1.2 zeta, 0.8 zeta, zeta}, which gives the Lissajous-like
-  // orbits of a real pull test. On: apply that spread to every branch's modes.
+  // Give every branch's modes the authors' demo spread: {0.95 f, 1.05 f, f} with damping
+  // {1.2 zeta, 0.8 zeta, zeta} (f, zeta the material's twist mode), the Lissajous-like orbits of a
+  // real pull test. The materials TreeDynamics::tree() returns carry the spread.
   bool demo_mode_spread = false;
-  WindOptions wind;
-  // Worker threads for the per-step pass; 0 = every core TBB finds.
-  int max_threads = 0;
+  WindOptions wind;     // off unless wind.enabled
+  int max_threads = 0;  // worker threads for the per-step pass (>= 0); 0 = every core TBB finds
+
+  // Throws InputError ("dynamics options", the field) for a value out of range: an unknown
+  // integrator, a ratio that is not positive and finite, negative threads, bad wind options.
+  void Validate() const;
 };
 
 // The three modal coordinates of a branch and their rates: bend_u, bend_w (tip deflection, m)
@@ -91,8 +99,8 @@ void ValidateForSimulation(const Tree& tree, const std::string& source);
 
 class TreeDynamics {
  public:
-  // Copies the tree (geometry and materials). Throws InputError as ValidateForSimulation(tree,
-  // "tree") does, or for options out of range.
+  // Copies the tree (geometry and materials). Throws InputError for options out of range
+  // (options.Validate()) and as ValidateForSimulation(tree, "tree") does.
   explicit TreeDynamics(const Tree& tree, const DynamicsOptions& options = {});
   ~TreeDynamics();
   TreeDynamics(TreeDynamics&&) noexcept;

@@ -10,12 +10,13 @@
 
 #include "simtree/core/error.h"
 #include "simtree/core/units.h"
+#include "simtree/dynamics/detail/check_option.h"
 
 namespace simtree::dynamics {
 namespace {
 
 void Check(bool ok, const std::string& field, const std::string& message) {
-  if (!ok) throw InputError("wind options", field, message);
+  CheckOption(ok, "wind options", field, message);
 }
 
 // von Karman energy spectrum shape (unnormalised): (kL)^4 / (1 + (kL)^2)^(17/6).
@@ -34,36 +35,34 @@ Eigen::Vector3d RandomUnit(std::mt19937_64& rng) {
 
 }  // namespace
 
+void WindOptions::Validate() const {
+  Check(std::isfinite(mean_speed_mps) && mean_speed_mps >= 0.0, "mean_speed_mps",
+        fmt::format("expected a speed >= 0 m/s, got {}", mean_speed_mps));
+  Check(direction.allFinite(), "direction", "expected a finite direction");
+  Check(std::isfinite(turbulence_intensity) && turbulence_intensity >= 0.0, "turbulence_intensity",
+        fmt::format("expected an intensity >= 0, got {}", turbulence_intensity));
+  Check(std::isfinite(length_scale_m) && length_scale_m >= 0.0, "length_scale_m",
+        fmt::format("expected a length >= 0 m (0 = automatic), got {}", length_scale_m));
+  Check(std::isfinite(shear_exponent) && shear_exponent >= 0.0 && shear_exponent <= 1.0,
+        "shear_exponent", fmt::format("expected an exponent in [0, 1], got {}", shear_exponent));
+  Check(modes >= 1 && modes <= 4096, "modes",
+        fmt::format("expected 1 to 4096 Fourier modes, got {}", modes));
+  Check(grid_cells >= 1 && grid_cells <= 256, "grid_cells",
+        fmt::format("expected 1 to 256 lattice cells, got {}", grid_cells));
+  Check(std::isfinite(air_density_kg_m3) && air_density_kg_m3 >= 0.0, "air_density_kg_m3",
+        fmt::format("expected a density >= 0, got {}", air_density_kg_m3));
+  Check(std::isfinite(drag_coefficient) && drag_coefficient >= 0.0, "drag_coefficient",
+        fmt::format("expected a coefficient >= 0, got {}", drag_coefficient));
+}
+
 WindField::WindField(const WindOptions& options, const Eigen::Vector3d& min_corner,
                      const Eigen::Vector3d& max_corner)
     : options_(options) {
-  Check(std::isfinite(options.mean_speed_mps) && options.mean_speed_mps >= 0.0, "mean_speed_mps",
-        fmt::format("expected a speed >= 0 m/s, got {}", options.mean_speed_mps));
-  Check(std::isfinite(options.turbulence_intensity) && options.turbulence_intensity >= 0.0,
-        "turbulence_intensity",
-        fmt::format("expected an intensity >= 0, got {}", options.turbulence_intensity));
-  Check(std::isfinite(options.length_scale_m) && options.length_scale_m >= 0.0, "length_scale_m",
-        fmt::format("expected a length >= 0 m (0 = automatic), got {}", options.length_scale_m));
-  Check(std::isfinite(options.shear_exponent) && options.shear_exponent >= 0.0 &&
-            options.shear_exponent <= 1.0,
-        "shear_exponent",
-        fmt::format("expected an exponent in [0, 1], got {}", options.shear_exponent));
-  Check(options.modes >= 1 && options.modes <= 4096, "modes",
-        fmt::format("expected 1 to 4096 Fourier modes, got {}", options.modes));
-  Check(options.grid_cells >= 1 && options.grid_cells <= 256, "grid_cells",
-        fmt::format("expected 1 to 256 lattice cells, got {}", options.grid_cells));
-  Check(std::isfinite(options.air_density_kg_m3) && options.air_density_kg_m3 >= 0.0,
-        "air_density_kg_m3",
-        fmt::format("expected a density >= 0, got {}", options.air_density_kg_m3));
-  Check(std::isfinite(options.drag_coefficient) && options.drag_coefficient >= 0.0,
-        "drag_coefficient",
-        fmt::format("expected a coefficient >= 0, got {}", options.drag_coefficient));
+  options.Validate();
   Check(
       min_corner.allFinite() && max_corner.allFinite() && (max_corner - min_corner).minCoeff() >= 0,
       "bounds", "expected finite bounds of the tree");
-
-  Eigen::Vector3d horizontal(options.direction.x(), options.direction.y(), 0.0);
-  Check(options.direction.allFinite(), "direction", "expected a finite direction");
+  const Eigen::Vector3d horizontal(options.direction.x(), options.direction.y(), 0.0);
   mean_direction_ = horizontal.norm() > 1e-9 ? horizontal.normalized() : Eigen::Vector3d::UnitX();
 
   ground_z_ = min_corner.z();

@@ -18,27 +18,33 @@
 namespace simtree::dynamics {
 
 struct WindOptions {
-  bool enabled = false;
-  double mean_speed_mps = 5.0;                           // at the top of the crown
+  bool enabled = false;         // off: no wind load, whatever the rest says
+  double mean_speed_mps = 5.0;  // at the top of the crown (m/s, >= 0)
   Eigen::Vector3d direction = Eigen::Vector3d::UnitX();  // blowing towards; made horizontal
-  // Standard deviation of each velocity component over mean speed (0.1-0.3 near trees).
+  // Standard deviation of each velocity component over mean speed (>= 0; 0.1-0.3 near trees).
   double turbulence_intensity = 0.25;
-  // Integral length scale of the gusts (m); 0 = the crown's height (at least 1 m).
+  // Integral length scale of the gusts (m, >= 0); 0 = the crown's height (at least 1 m).
   double length_scale_m = 0.0;
-  // Mean speed grows with height as (z / top)^exponent (power-law boundary layer); 0 = uniform.
+  // Mean speed grows with height as (z / top)^exponent (power-law boundary layer, exponent in
+  // [0, 1]); 0 = uniform.
   double shear_exponent = 0.15;
-  int modes = 64;      // Fourier modes of the turbulence
-  int grid_cells = 8;  // lattice cells along the longest side of the crown
-  uint64_t seed = 1;   // same seed, same wind
-  double air_density_kg_m3 = 1.2;
-  double drag_coefficient = 1.2;  // of a cylinder in cross flow (Re ~ 1e3-1e5)
+  int modes = 64;                  // Fourier modes of the turbulence (1 to 4096)
+  int grid_cells = 8;              // lattice cells along the longest side of the crown (1 to 256)
+  uint64_t seed = 1;               // same seed, same wind
+  double air_density_kg_m3 = 1.2;  // kg/m^3, >= 0
+  double drag_coefficient = 1.2;   // of a cylinder in cross flow (Re ~ 1e3-1e5), >= 0
+
+  // Throws InputError ("wind options", the field) for a value out of range: a negative or NaN
+  // speed, intensity, length, density or coefficient, a shear exponent outside [0, 1], modes or
+  // cells outside their ranges, a direction that is not finite.
+  void Validate() const;
 };
 
 class WindField {
  public:
   WindField() = default;
   // `min_corner`/`max_corner` bound the tree; the lattice covers them. Throws InputError on
-  // options out of range (negative speed, NaN, no modes).
+  // options out of range (options.Validate()) or bounds that are not finite.
   WindField(const WindOptions& options, const Eigen::Vector3d& min_corner,
             const Eigen::Vector3d& max_corner);
 

@@ -105,23 +105,9 @@ void Validate(const SkinnedAnimation& a) {
   }
 }
 
-}  // namespace
-
-void WriteGltfAnimation(const SkinnedAnimation& a, const std::filesystem::path& path) {
-  Validate(a);
-  std::string ext = path.extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  Check(ext == ".glb" || ext == ".gltf", "path",
-        fmt::format("expected a file ending in .glb or .gltf, got \"{}\"", path.string()));
-  const size_t joints = a.joint_rest.size();
-  const size_t frames = a.times.size();
-
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "simtree";
-  BufferBuilder buffer(model);
-
-  // Mesh.
+// The skinned tube mesh (vertices, normals, joints and weights, triangles) and its material, as
+// mesh 0 and material 0.
+void AddSkinnedMesh(const SkinnedAnimation& a, BufferBuilder& buffer, tinygltf::Model& model) {
   std::vector<Eigen::Vector3f> positions, normals;
   positions.reserve(a.mesh.vertices.size());
   normals.reserve(a.mesh.vertices.size());
@@ -176,8 +162,20 @@ void WriteGltfAnimation(const SkinnedAnimation& a, const std::filesystem::path& 
   mesh.name = a.name + " mesh";
   mesh.primitives.push_back(primitive);
   model.meshes.push_back(mesh);
+}
 
-  // Nodes: 0 the skeleton root, 1..joints the joints, then the skinned mesh, then the points.
+// Where the nodes are: 0 the skeleton root, 1..joints the joints, then the skinned mesh, then the
+// points' root and the points.
+struct NodeLayout {
+  int mesh_node = 0;
+  int points_root = 0;
+  int first_point = 0;
+};
+
+// The skeleton (joints at their rest positions, with inverse bind matrices), the skin, the mesh
+// node and the animated points.
+NodeLayout AddNodes(const SkinnedAnimation& a, BufferBuilder& buffer, tinygltf::Model& model) {
+  const size_t joints = a.joint_rest.size();
   tinygltf::Node root;
   root.name = a.name + " skeleton";
   model.nodes.push_back(root);
@@ -202,28 +200,35 @@ void WriteGltfAnimation(const SkinnedAnimation& a, const std::filesystem::path& 
       buffer.Accessor(buffer.View(inverse_bind.data(), inverse_bind.size() * 4),
                       TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_MAT4, joints);
   model.skins.push_back(skin);
+  NodeLayout layout;
   tinygltf::Node mesh_node;
   mesh_node.name = a.name;
   mesh_node.mesh = 0;
   mesh_node.skin = 0;
   model.nodes.push_back(mesh_node);
-  const int mesh_node_index = static_cast<int>(model.nodes.size()) - 1;
+  layout.mesh_node = static_cast<int>(model.nodes.size()) - 1;
   tinygltf::Node points_root;
   points_root.name = a.name + " markers";
   model.nodes.push_back(points_root);
-  const int points_root_index = static_cast<int>(model.nodes.size()) - 1;
-  const int first_point = points_root_index + 1;
+  layout.points_root = static_cast<int>(model.nodes.size()) - 1;
+  layout.first_point = layout.points_root + 1;
   for (size_t p = 0; p < a.point_names.size(); ++p) {
     tinygltf::Node point;
     point.name = a.point_names[p];
     const Eigen::Vector3f x = ToGltf(a.point_positions[p]);
     point.translation = {x.x(), x.y(), x.z()};
     model.nodes.push_back(point);
-    model.nodes[points_root_index].children.push_back(first_point + static_cast<int>(p));
+    model.nodes[layout.points_root].children.push_back(layout.first_point + static_cast<int>(p));
   }
+  return layout;
+}
 
-  // Animation: one time accessor shared by every sampler; per joint a translation and a
-  // rotation track, per point a translation track, each a contiguous run of one buffer view.
+// The animation: one time accessor shared by every sampler; per joint a translation and a
+// rotation track, per point a translation track, each a contiguous run of one buffer view.
+void AddAnimation(const SkinnedAnimation& a, const NodeLayout& layout, BufferBuilder& buffer,
+                  tinygltf::Model& model) {
+  const size_t joints = a.joint_rest.size();
+  const size_t frames = a.times.size();
   tinygltf::Animation animation;
   animation.name = a.name;
   const int time_accessor = buffer.Accessor(buffer.View(a.times.data(), a.times.size() * 4),
@@ -280,14 +285,32 @@ void WriteGltfAnimation(const SkinnedAnimation& a, const std::filesystem::path& 
     for (size_t p = 0; p < a.point_names.size(); ++p) {
       int t = buffer.Accessor(view, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, frames);
       model.accessors[t].byteOffset = 12 * p * frames;
-      add_track(first_point + static_cast<int>(p), "translation", t);
+      add_track(layout.first_point + static_cast<int>(p), "translation", t);
     }
   }
   model.animations.push_back(animation);
+}
 
+}  // namespace
+
+void WriteGltfAnimation(const SkinnedAnimation& a, const std::filesystem::path& path) {
+  Validate(a);
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  Check(ext == ".glb" || ext == ".gltf", "path",
+        fmt::format("expected a file ending in .glb or .gltf, got \"{}\"", path.string()));
+
+  // Buffer views and accessors are numbered in the order these add them.
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "simtree";
+  BufferBuilder buffer(model);
+  AddSkinnedMesh(a, buffer, model);
+  const NodeLayout layout = AddNodes(a, buffer, model);
+  AddAnimation(a, layout, buffer, model);
   tinygltf::Scene scene;
   scene.name = a.name;
-  scene.nodes = {0, mesh_node_index, points_root_index};
+  scene.nodes = {0, layout.mesh_node, layout.points_root};
   model.scenes.push_back(scene);
   model.defaultScene = 0;
 

@@ -98,6 +98,136 @@ void CheckTrajectories(const Trajectories& t, const std::string& source) {
   }
 }
 
+// Throws InputError naming the file and the line being read.
+struct LineError {
+  const std::string& source;
+  int line = 0;
+  [[noreturn]] void operator()(const std::string& message) const {
+    throw InputError(source, fmt::format("line {}", line), message);
+  }
+};
+
+// One data row: "frame,time_s,marker,x,y,z,valid".
+struct TrajectoryRow {
+  int frame = 0, marker = 0, valid = 0;
+  double time = 0;
+  Eigen::Vector3d position = Eigen::Vector3d::Constant(kNaN);
+};
+
+TrajectoryRow ParseRow(std::string_view line, const LineError& fail) {
+  const std::vector<std::string_view> f = SplitCommas(line);
+  if (f.size() != 7) {
+    fail(fmt::format("expected 7 fields \"frame,time_s,marker,x,y,z,valid\", got {}", f.size()));
+  }
+  TrajectoryRow r;
+  if (!ParseInt(f[0], &r.frame))
+    fail(fmt::format("frame: expected an integer, got {}", Quote(f[0])));
+  if (!ParseDouble(f[1], &r.time) || !std::isfinite(r.time)) {
+    fail(fmt::format("time_s: expected a finite number, got {}", Quote(f[1])));
+  }
+  if (!ParseInt(f[2], &r.marker)) {
+    fail(fmt::format("marker: expected an integer id, got {}", Quote(f[2])));
+  }
+  if (!ParseInt(f[6], &r.valid) || (r.valid != 0 && r.valid != 1)) {
+    fail(fmt::format("valid: expected 0 or 1, got {}", Quote(f[6])));
+  }
+  for (int k = 0; k < 3; ++k) {
+    const std::string_view v = f[3 + k];
+    double x = kNaN;
+    if (v.empty() || IsNaNWord(v)) {
+      if (r.valid) fail(fmt::format("{}: a valid row needs a finite coordinate", "xyz"[k]));
+    } else if (!ParseDouble(v, &x) || (r.valid && !std::isfinite(x))) {
+      fail(fmt::format("{}: expected a number in metres, got {}", "xyz"[k], Quote(v)));
+    }
+    r.position[k] = x;
+  }
+  return r;
+}
+
+// Gathers rows into frames and tracks, checking that frames increase, each frame's rows come
+// together, and every marker appears once in every frame.
+class TrajectoryBuilder {
+ public:
+  explicit TrajectoryBuilder(const std::string& source) : source_(source) {}
+
+  bool empty() const { return out_.frames.empty(); }
+
+  void Add(const TrajectoryRow& row, const LineError& fail) {
+    const bool new_frame = out_.frames.empty() || row.frame != out_.frames.back();
+    if (new_frame) {
+      StartFrame(row, fail);
+    } else if (row.time != out_.times_s.back()) {
+      fail(fmt::format("time_s {} differs from {} on the same frame {}", row.time,
+                       out_.times_s.back(), row.frame));
+    }
+    auto it = track_of_.find(row.marker);
+    if (it == track_of_.end()) {
+      if (out_.frames.size() > 1) {
+        fail(
+            fmt::format("marker {} first appears in frame {} (every marker must appear in every "
+                        "frame)",
+                        row.marker, row.frame));
+      }
+      it = track_of_.emplace(row.marker, out_.marker_count()).first;
+      out_.tracks.push_back(MarkerTrack{row.marker, {}, {}});
+      seen_in_frame_.push_back(false);
+    }
+    const int m = it->second;
+    if (seen_in_frame_[m]) {
+      fail(fmt::format("marker {} appears twice in frame {}", row.marker, row.frame));
+    }
+    seen_in_frame_[m] = true;
+    ++seen_count_;
+    out_.tracks[m].positions.push_back(row.valid ? row.position : Eigen::Vector3d::Constant(kNaN));
+    out_.tracks[m].valid.push_back(row.valid == 1);
+  }
+
+  Trajectories Finish() {
+    CloseFrame();
+    return std::move(out_);
+  }
+
+ private:
+  void StartFrame(const TrajectoryRow& row, const LineError& fail) {
+    CloseFrame();
+    if (!out_.frames.empty()) {
+      if (row.frame < out_.frames.back()) {
+        fail(
+            fmt::format("frame {} after frame {}: expected frames in increasing order, each "
+                        "frame's rows together",
+                        row.frame, out_.frames.back()));
+      }
+      if (row.time <= out_.times_s.back()) {
+        fail(fmt::format("time_s {} is not after the previous frame's {}", row.time,
+                         out_.times_s.back()));
+      }
+    }
+    out_.frames.push_back(row.frame);
+    out_.times_s.push_back(row.time);
+    std::fill(seen_in_frame_.begin(), seen_in_frame_.end(), false);
+    seen_count_ = 0;
+  }
+
+  // Every marker must have appeared in the frame just read.
+  void CloseFrame() const {
+    if (out_.frames.empty() || seen_count_ == out_.marker_count()) return;
+    for (const MarkerTrack& track : out_.tracks) {
+      if (!seen_in_frame_[track_of_.at(track.marker)]) {
+        throw InputError(source_, fmt::format("frame {}", out_.frames.back()),
+                         fmt::format("marker {} is missing (every marker must appear in every "
+                                     "frame, with valid 0 when lost)",
+                                     track.marker));
+      }
+    }
+  }
+
+  const std::string& source_;
+  Trajectories out_;
+  std::unordered_map<int, int> track_of_;  // marker id -> index into out_.tracks
+  std::vector<bool> seen_in_frame_;
+  int seen_count_ = 0;
+};
+
 }  // namespace
 
 int MarkerTrack::valid_count() const {
@@ -132,34 +262,15 @@ void Trajectories::AddFrame(int frame, double time_s, const std::vector<Eigen::V
 }
 
 Trajectories ParseTrajectoriesCsv(const std::string& text, const std::string& source) {
-  Trajectories out;
-  std::unordered_map<int, int> track_of;  // marker id -> index into out.tracks
-  std::vector<bool> seen_in_frame;
-  int seen_count = 0;
-  int line_number = 0;
+  TrajectoryBuilder builder(source);
+  LineError fail{source};
   size_t pos = 0;
   bool have_first_line = false, have_header = false;
-  auto fail = [&](const std::string& message) -> void {
-    throw InputError(source, fmt::format("line {}", line_number), message);
-  };
-  auto close_frame = [&] {
-    if (out.frames.empty()) return;
-    if (seen_count != out.marker_count()) {
-      for (const MarkerTrack& track : out.tracks) {
-        if (!seen_in_frame[track_of[track.marker]]) {
-          throw InputError(source, fmt::format("frame {}", out.frames.back()),
-                           fmt::format("marker {} is missing (every marker must appear in every "
-                                       "frame, with valid 0 when lost)",
-                                       track.marker));
-        }
-      }
-    }
-  };
   while (pos < text.size()) {
     const size_t eol = std::min(text.find('\n', pos), text.size());
     const std::string_view line = Trim(std::string_view(text).substr(pos, eol - pos));
     pos = eol + 1;
-    ++line_number;
+    ++fail.line;
     if (!have_first_line) {
       if (line != kTrajectoriesFirstLine) {
         fail(fmt::format("expected the first line \"{}\", got {}", kTrajectoriesFirstLine,
@@ -176,83 +287,14 @@ Trajectories ParseTrajectoriesCsv(const std::string& text, const std::string& so
       have_header = true;
       continue;
     }
-    const std::vector<std::string_view> f = SplitCommas(line);
-    if (f.size() != 7) {
-      fail(fmt::format("expected 7 fields \"frame,time_s,marker,x,y,z,valid\", got {}", f.size()));
-    }
-    int frame = 0, marker = 0, valid = 0;
-    double time = 0;
-    if (!ParseInt(f[0], &frame))
-      fail(fmt::format("frame: expected an integer, got {}", Quote(f[0])));
-    if (!ParseDouble(f[1], &time) || !std::isfinite(time)) {
-      fail(fmt::format("time_s: expected a finite number, got {}", Quote(f[1])));
-    }
-    if (!ParseInt(f[2], &marker)) {
-      fail(fmt::format("marker: expected an integer id, got {}", Quote(f[2])));
-    }
-    if (!ParseInt(f[6], &valid) || (valid != 0 && valid != 1)) {
-      fail(fmt::format("valid: expected 0 or 1, got {}", Quote(f[6])));
-    }
-    Eigen::Vector3d p = Eigen::Vector3d::Constant(kNaN);
-    for (int k = 0; k < 3; ++k) {
-      const std::string_view v = f[3 + k];
-      double x = kNaN;
-      if (v.empty() || IsNaNWord(v)) {
-        if (valid) fail(fmt::format("{}: a valid row needs a finite coordinate", "xyz"[k]));
-      } else if (!ParseDouble(v, &x) || (valid && !std::isfinite(x))) {
-        fail(fmt::format("{}: expected a number in metres, got {}", "xyz"[k], Quote(v)));
-      }
-      p[k] = x;
-    }
-    const bool new_frame = out.frames.empty() || frame != out.frames.back();
-    if (new_frame) {
-      close_frame();
-      if (!out.frames.empty()) {
-        if (frame < out.frames.back()) {
-          fail(
-              fmt::format("frame {} after frame {}: expected frames in increasing order, each "
-                          "frame's rows together",
-                          frame, out.frames.back()));
-        }
-        if (time <= out.times_s.back()) {
-          fail(fmt::format("time_s {} is not after the previous frame's {}", time,
-                           out.times_s.back()));
-        }
-      }
-      out.frames.push_back(frame);
-      out.times_s.push_back(time);
-      std::fill(seen_in_frame.begin(), seen_in_frame.end(), false);
-      seen_count = 0;
-    } else if (time != out.times_s.back()) {
-      fail(fmt::format("time_s {} differs from {} on the same frame {}", time, out.times_s.back(),
-                       frame));
-    }
-    auto it = track_of.find(marker);
-    if (it == track_of.end()) {
-      if (out.frames.size() > 1) {
-        fail(
-            fmt::format("marker {} first appears in frame {} (every marker must appear in every "
-                        "frame)",
-                        marker, frame));
-      }
-      it = track_of.emplace(marker, out.marker_count()).first;
-      out.tracks.push_back(MarkerTrack{marker, {}, {}});
-      seen_in_frame.push_back(false);
-    }
-    const int m = it->second;
-    if (seen_in_frame[m]) fail(fmt::format("marker {} appears twice in frame {}", marker, frame));
-    seen_in_frame[m] = true;
-    ++seen_count;
-    out.tracks[m].positions.push_back(valid ? p : Eigen::Vector3d::Constant(kNaN));
-    out.tracks[m].valid.push_back(valid == 1);
+    builder.Add(ParseRow(line, fail), fail);
   }
   if (!have_first_line) {
     throw InputError(source, "", "expected a simtree.trajectories file, the file is empty");
   }
   if (!have_header) throw InputError(source, "", "expected the header line, got end of file");
-  if (out.frames.empty()) throw InputError(source, "", "expected at least one frame, got none");
-  close_frame();
-  return out;
+  if (builder.empty()) throw InputError(source, "", "expected at least one frame, got none");
+  return builder.Finish();
 }
 
 Trajectories ReadTrajectoriesCsv(const std::filesystem::path& path) {

@@ -10,6 +10,7 @@
 #include "simtree/core/atomic_file.h"
 #include "simtree/core/error.h"
 #include "simtree/core/progress.h"
+#include "simtree/dynamics/detail/check_option.h"
 #include "simtree/io/capture.h"
 #include "simtree/io/ground_truth.h"
 #include "simtree/io/image_io.h"
@@ -113,61 +114,95 @@ class FrameRenderer : public dynamics::FrameRecorder {
   double draw_seconds_ = 0.0;
 };
 
+// What a run is drawn from and, side by side, the capture stream it is shown beside.
+struct RenderView {
+  CameraView camera;
+  std::optional<PullStream> pull;
+};
+
+// The capture's pull camera; the run takes the capture's frame rate and duration.
+RenderView SideBySideView(const RenderOptions& options, dynamics::SimulationOptions& simulation) {
+  const Capture capture = OpenCapture(*options.capture);
+  if (!capture.pull || capture.pull->frames.size() < 2) {
+    throw InputError(options.capture->string(), "pull",
+                     "expected a pull-test stream of at least 2 frames for side by side");
+  }
+  RenderView view;
+  view.pull = capture.pull;
+  Eigen::Isometry3d pose;
+  if (options.world_from_camera) {
+    pose = *options.world_from_camera;
+  } else {
+    const std::filesystem::path gt = *options.capture / "gt" / "pull_camera.json";
+    if (!std::filesystem::exists(gt)) {
+      throw InputError(options.capture->string(), "gt/pull_camera.json",
+                       "missing: give the pull camera's pose with --camera-pose");
+    }
+    pose = ReadPullCamera(gt);
+  }
+  view.camera = PinholeView(view.pull->intrinsics, pose);
+  simulation.fps = view.pull->FrameRate();
+  simulation.duration_s = view.pull->frames.back().time_s - view.pull->frames.front().time_s;
+  return view;
+}
+
+// The orbit camera framing the whole tree.
+RenderView OrbitView(const Tree& tree, const RenderOptions& options) {
+  OrbitCamera orbit;
+  orbit.yaw_rad = options.yaw_rad;
+  orbit.pitch_rad = options.pitch_rad;
+  Eigen::Vector3d lo, hi;
+  tree.Bounds(&lo, &hi);
+  orbit.Frame(lo, hi, static_cast<double>(options.width) / options.height);
+  orbit.Zoom(options.zoom);
+  RenderView view;
+  view.camera = orbit.View(options.width, options.height);
+  return view;
+}
+
+RenderView ChooseView(const Tree& tree, const RenderOptions& options,
+                      dynamics::SimulationOptions& simulation) {
+  if (options.capture) return SideBySideView(options, simulation);
+  if (options.intrinsics) {
+    RenderView view;
+    view.camera = PinholeView(*options.intrinsics, *options.world_from_camera);
+    return view;
+  }
+  return OrbitView(tree, options);
+}
+
 }  // namespace
+
+void RenderOptions::Validate() const {
+  const auto check = [](bool ok, const std::string& field, const std::string& message) {
+    dynamics::CheckOption(ok, "render options", field, message);
+  };
+  ValidateFramebuffer(width, height, samples, "render options");
+  check(std::isfinite(yaw_rad) && std::isfinite(pitch_rad), "yaw_rad",
+        fmt::format("expected finite angles, got yaw {} and pitch {}", yaw_rad, pitch_rad));
+  check(zoom > 0.0 && std::isfinite(zoom), "zoom", fmt::format("expected > 0, got {}", zoom));
+  if (intrinsics) {
+    ValidateIntrinsics(*intrinsics, "render options: intrinsics");
+    check(world_from_camera.has_value(), "world_from_camera", "a calibrated camera needs its pose");
+  }
+  check(!world_from_camera || world_from_camera->matrix().allFinite(), "world_from_camera",
+        "expected a finite pose");
+  scene.Validate();
+  OffscreenOptions{.backend = backend}.Validate();
+}
 
 RenderResult RenderSimulation(const Tree& tree, dynamics::SimulationOptions simulation,
                               const LeafAssets* foliage, const std::vector<LeafInstance>& leaves,
                               const RenderOptions& options, const std::filesystem::path& out_dir) {
   const auto start = std::chrono::steady_clock::now();
-  if (options.width < 1 || options.height < 1) {
-    throw InputError(
-        "", "--size",
-        fmt::format("expected a positive size, got {}x{}", options.width, options.height));
-  }
-  std::optional<PullStream> pull;
-  CameraView camera;
-  if (options.capture) {
-    const Capture capture = OpenCapture(*options.capture);
-    if (!capture.pull || capture.pull->frames.size() < 2) {
-      throw InputError(options.capture->string(), "pull",
-                       "expected a pull-test stream of at least 2 frames for side by side");
-    }
-    pull = capture.pull;
-    Eigen::Isometry3d pose;
-    if (options.world_from_camera) {
-      pose = *options.world_from_camera;
-    } else {
-      const std::filesystem::path gt = *options.capture / "gt" / "pull_camera.json";
-      if (!std::filesystem::exists(gt)) {
-        throw InputError(options.capture->string(), "gt/pull_camera.json",
-                         "missing: give the pull camera's pose with --camera-pose");
-      }
-      pose = ReadPullCamera(gt);
-    }
-    camera = PinholeView(pull->intrinsics, pose);
-    simulation.fps = pull->FrameRate();
-    simulation.duration_s = pull->frames.back().time_s - pull->frames.front().time_s;
-  } else if (options.intrinsics) {
-    if (!options.world_from_camera) {
-      throw InputError("", "--camera-pose", "a calibrated camera needs its pose");
-    }
-    ValidateIntrinsics(*options.intrinsics, "--intrinsics");
-    camera = PinholeView(*options.intrinsics, *options.world_from_camera);
-  } else {
-    OrbitCamera orbit;
-    orbit.yaw_rad = options.yaw_rad;
-    orbit.pitch_rad = options.pitch_rad;
-    Eigen::Vector3d lo, hi;
-    tree.Bounds(&lo, &hi);
-    orbit.Frame(lo, hi, static_cast<double>(options.width) / options.height);
-    orbit.Zoom(options.zoom);
-    camera = orbit.View(options.width, options.height);
-  }
+  options.Validate();
+  const RenderView view = ChooseView(tree, options, simulation);
+  dynamics::ValidateSimulation(tree, simulation);
 
   AtomicDirectory folder(out_dir);
-  FrameRenderer renderer(tree, foliage, leaves, options, camera, pull, folder.path());
+  FrameRenderer renderer(tree, foliage, leaves, options, view.camera, view.pull, folder.path());
   dynamics::FrameRecorder* recorders[] = {&renderer};
-  const dynamics::SimulationResult run = dynamics::RunSimulation(tree, simulation, recorders);
+  dynamics::RunSimulation(tree, simulation, recorders);
   folder.Commit();
 
   RenderResult result;
@@ -180,7 +215,6 @@ RenderResult RenderSimulation(const Tree& tree, dynamics::SimulationOptions simu
       result.frames > 0 ? 1000.0 * renderer.draw_seconds() / result.frames : 0.0;
   result.simulated_fps = simulation.fps;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  (void)run;
   return result;
 }
 

@@ -24,23 +24,30 @@
 namespace simtree::viewer {
 
 struct RenderOptions {
-  int width = 1280;  // of the simulated view (side by side: the capture's size instead)
+  // Size of the simulated view (pixels, 1 to 16384); side by side takes the capture camera's.
+  int width = 1280;
   int height = 720;
-  int samples = 4;
-  OffscreenBackend backend = OffscreenBackend::kAuto;
-  SceneStyle style;
-  SceneOptions scene;
-  // Orbit camera angles about the tree's centre; the distance frames the whole tree.
+  int samples = 4;  // multisample anti-aliasing samples per pixel (0 = off, at most 16)
+  OffscreenBackend backend = OffscreenBackend::kAuto;  // kAuto: EGL, else Xvfb
+  SceneStyle style;                                    // leaves, grid, colouring, background
+  SceneOptions scene;                                  // tubes, bark, grid spacing, leaf detail
+  // Orbit camera angles about the tree's centre (rad); the distance frames the whole tree.
   double yaw_rad = -1.5707963267948966;
   double pitch_rad = 0.15;
-  double zoom = 1.0;  // < 1 comes closer
-  // A calibrated camera instead of the orbit camera (what side by side uses).
+  double zoom = 1.0;  // distance factor (> 0; < 1 comes closer)
+  // A calibrated camera instead of the orbit camera (needs world_from_camera); side by side
+  // takes the capture's pull camera instead.
   std::optional<CameraIntrinsics> intrinsics;
+  // The camera's pose: for `intrinsics`, and for side by side (default: the capture's
+  // gt/pull_camera.json).
   std::optional<Eigen::Isometry3d> world_from_camera;
-  // Side by side with this capture's pull stream (needs world_from_camera or gt/pull_camera.json).
+  // Side by side with this capture's pull stream: the run's frame rate and duration become the
+  // capture's, whatever the simulation options say.
   std::optional<std::filesystem::path> capture;
-  bool markers = true;     // the tree's markers as dots
-  double video_fps = 0.0;  // the frame rate the video plays at; 0 = the simulation's
+  bool markers = true;  // the tree's markers as dots
+
+  // Throws InputError ("render options", the field) for a value out of range.
+  void Validate() const;
 };
 
 struct RenderResult {
@@ -55,7 +62,8 @@ struct RenderResult {
 
 // Runs `simulation` on `tree` and writes <out_dir>/000000.png, 000001.png, ... (the folder is
 // replaced whole, or left untouched on error). `foliage` may be null. For side by side the run's
-// frame rate and duration become the capture's.
+// frame rate and duration become the capture's. Throws InputError before any work for options out
+// of range, a capture without a pull stream or camera pose, and as RunSimulation does.
 RenderResult RenderSimulation(const Tree& tree, dynamics::SimulationOptions simulation,
                               const LeafAssets* foliage, const std::vector<LeafInstance>& leaves,
                               const RenderOptions& options, const std::filesystem::path& out_dir);

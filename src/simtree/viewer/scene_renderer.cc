@@ -9,6 +9,7 @@
 
 #include "simtree/core/error.h"
 #include "simtree/core/units.h"
+#include "simtree/dynamics/detail/check_option.h"
 #include "simtree/io/mesh_io.h"
 #include "simtree/viewer/detail/gl_objects.h"
 #include "simtree/viewer/detail/shaders.h"
@@ -208,8 +209,7 @@ void SceneRenderer::Impl::BuildLeaves(const LeafAssets& assets,
       radii.push_back(model.petiole_radii[i]);
     }
     AppendTube(centers, radii, Eigen::Vector3d::UnitZ(), 0,
-               {.sides = std::max(3, options.petiole_sides), .caps = false, .min_radius = 1e-4},
-               tube);
+               {.sides = options.petiole_sides, .caps = false, .min_radius = 1e-4}, tube);
     const float length = std::max(1e-6f, tube.uvs.back().y());
     for (size_t i = 0; i < tube.vertex_count(); ++i) {
       LeafVertex v{};
@@ -332,9 +332,26 @@ void SceneRenderer::Impl::DrawFlat(const CameraView& camera,
   glBindVertexArray(0);
 }
 
+void SceneOptions::Validate() const {
+  const auto check = [](bool ok, const std::string& field, const std::string& message) {
+    dynamics::CheckOption(ok, "scene options", field, message);
+  };
+  check(tube.sides >= 3, "tube.sides", fmt::format("expected 3 or more sides, got {}", tube.sides));
+  check(tube.min_radius >= 0.0 && std::isfinite(tube.min_radius), "tube.min_radius",
+        fmt::format("expected a radius >= 0 m, got {}", tube.min_radius));
+  check(bark_metres > 0.0 && std::isfinite(bark_metres), "bark_metres",
+        fmt::format("expected a length > 0 m, got {}", bark_metres));
+  check(grid_spacing_m > 0.0 && std::isfinite(grid_spacing_m), "grid_spacing_m",
+        fmt::format("expected a spacing > 0 m, got {}", grid_spacing_m));
+  check(petiole_sides >= 3, "petiole_sides",
+        fmt::format("expected 3 or more sides, got {}", petiole_sides));
+  leaf_detail.Validate();
+}
+
 SceneRenderer::SceneRenderer(const Tree& tree, const LeafAssets* foliage,
                              std::vector<LeafInstance> leaves, const SceneOptions& options)
     : impl_(std::make_unique<Impl>()) {
+  options.Validate();
   Impl& m = *impl_;
   if (tree.empty()) throw InputError("scene", "tree", "expected a tree with branches");
   m.tree = tree;

@@ -39,19 +39,24 @@ struct SceneStyle {
 };
 
 struct SceneOptions {
+  // The branches' tubes (sides >= 3, min_radius >= 0 m).
   TubeMeshOptions tube = {.sides = 8, .caps = true, .min_radius = 1e-3};
-  double bark_metres = 0.6;  // the bark texture repeats along this length of branch
-  double grid_spacing_m = 0.5;
+  double bark_metres = 0.6;     // the bark texture repeats along this length of branch (m, > 0)
+  double grid_spacing_m = 0.5;  // between the ground grid's lines (m, > 0)
   // The leaf model drawn: simplified to within 1 % of its length (tolerance 0: the authors' mesh).
-  // Leaves are a few tens of pixels long in a view of the whole tree, where their triangles were
+  // Leaves are a few tens of pixels long in a view of the whole tree, where their triangles are
   // most of a software rasteriser's frame.
   LeafSimplifyOptions leaf_detail;
-  int petiole_sides = 3;  // a petiole is a pixel or two wide
+  int petiole_sides = 3;  // sides of a petiole's tube (>= 3): a petiole is a pixel or two wide
+
+  // Throws InputError ("scene options", the field) for a value out of range.
+  void Validate() const;
 };
 
 class SceneRenderer {
  public:
   // `foliage` may be null: no leaves, a plain bark colour. `leaves` are where the leaves go.
+  // Throws InputError for an empty tree or options out of range (options.Validate()).
   SceneRenderer(const Tree& tree, const LeafAssets* foliage, std::vector<LeafInstance> leaves,
                 const SceneOptions& options = {});
   ~SceneRenderer();

@@ -5,22 +5,31 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <vector>
 
 #include <fmt/format.h>
 
 #include "simtree/core/atomic_file.h"
 #include "simtree/core/error.h"
+#include "simtree/dynamics/detail/check_option.h"
 
 extern char** environ;
 
 namespace simtree::viewer {
 
+void VideoOptions::Validate() const {
+  dynamics::CheckOption(fps > 0.0 && std::isfinite(fps), "video options", "fps",
+                        fmt::format("expected a frame rate > 0, got {}", fps));
+  dynamics::CheckOption(crf >= 0 && crf <= 51, "video options", "crf",
+                        fmt::format("expected 0 to 51, got {}", crf));
+  dynamics::CheckOption(!pattern.empty(), "video options", "pattern",
+                        "expected a frame file name pattern such as %06d.png");
+}
+
 void EncodeVideo(const std::filesystem::path& frames_dir, const std::filesystem::path& output,
                  const VideoOptions& options) {
-  if (!(options.fps > 0.0)) {
-    throw InputError("", "fps", fmt::format("expected a frame rate > 0, got {}", options.fps));
-  }
+  options.Validate();
   if (output.has_parent_path()) std::filesystem::create_directories(output.parent_path());
   // Written beside the target under a name ffmpeg still recognises by its extension.
   const std::filesystem::path partial =

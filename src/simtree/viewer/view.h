@@ -26,27 +26,34 @@
 namespace simtree::viewer {
 
 struct ViewerOptions {
-  int width = 1280;
+  int width = 1280;  // window size (pixels, 1 to 16384)
   int height = 800;
-  int samples = 0;  // multisample anti-aliasing of the window (costly on a software rasteriser)
-  bool vsync = false;
-  std::string title = "simtree";
+  // Multisample anti-aliasing samples of the window (0 to 16; costly on a software rasteriser).
+  int samples = 0;
+  bool vsync = false;             // wait for the display's refresh
+  std::string title = "simtree";  // of the window
+  // The style at the start (leaves, grid, colouring, background); the hovered and selected
+  // branches follow the mouse.
   SceneStyle style;
-  SceneOptions scene;
-  dynamics::DynamicsOptions dynamics;
+  SceneOptions scene;                  // tubes, bark, grid spacing, leaf detail
+  dynamics::DynamicsOptions dynamics;  // the model, as `simulate` takes it
   // A pull test played from t = 0 (and after every reset), as `simulate --pull` plays it.
   std::optional<dynamics::PullSchedule> pull;
-  // Simulation time per frame: fixed (scripted runs, benchmarks) or the wall time of the frame
-  // (interactive, capped at 1/15 s).
+  // Simulation time per frame: 1 / fps (scripted runs, benchmarks; the CLI sets it for scripts)
+  // or the wall time of the frame (interactive, capped at 1/15 s).
   bool fixed_step = false;
-  double fps = 30.0;
-  bool start_paused = false;
+  double fps = 30.0;  // simulated frames per second with fixed_step and for a single step (> 0)
+  bool start_paused = false;  // the simulation waits for play (space)
   // Playback: measured markers (world frame) against the simulated `markers` of the same ids.
   std::optional<Trajectories> measured;
-  std::vector<Marker> markers;
-  std::vector<ScriptAction> script;
-  std::string script_source;
-  std::filesystem::path screenshot_dir = ".";
+  std::vector<Marker> markers;       // drawn as dots; those on no branch of the tree are skipped
+  std::vector<ScriptAction> script;  // scripted input (script.h), one action a frame or more
+  std::string script_source;         // the script's file, for messages
+  std::filesystem::path screenshot_dir = ".";  // where the p key and the panel's button write
+
+  // Throws InputError ("viewer options", the field) for a value out of range, and as the
+  // scene, dynamics and pull schedule's Validate() do.
+  void Validate() const;
 };
 
 struct ViewerStats {
@@ -61,7 +68,8 @@ struct ViewerStats {
 
 class Viewer {
  public:
-  // Opens the window (throws simtree::Error when there is no display or no OpenGL 3.3).
+  // Opens the window. Throws InputError for options out of range (options.Validate()) and
+  // simtree::Error when there is no display or no OpenGL 3.3.
   Viewer(const Tree& tree, const SceneAssets& assets, const ViewerOptions& options);
   ~Viewer();
   Viewer(const Viewer&) = delete;

@@ -12,8 +12,8 @@ inline constexpr double kCantileverBeta1 = 1.8751040687119611;
 
 // phi(x) = [cosh bx - cos bx - sigma (sinh bx - sin bx)] / (value at x = 1), with
 // sigma = (cosh b + cos b) / (sinh b + sin b). phi(0) = phi'(0) = 0, phi(1) = 1, and the free end
-// carries no moment or shear (phi''(1) = phi'''(1) = 0). (identification/simulation_ready.h has
-// the same shape as CantileverModeShape for modal masses; these add its derivatives.)
+// carries no moment or shear (phi''(1) = phi'''(1) = 0). (simready/build.h has the same shape
+// as CantileverModeShape for modal masses; these add its derivatives.)
 double BendingModeShape(double x);
 // d phi / dx (per unit of x: divide by L for the slope per metre).
 double BendingModeSlope(double x);

@@ -8,33 +8,10 @@
 
 #include "simtree/core/error.h"
 #include "simtree/core/units.h"
+#include "simtree/dynamics/detail/check_option.h"
 
 namespace simtree::viewer {
 namespace {
-
-void CheckOptions(const FoliageOptions& o, float model_length) {
-  auto fail = [](const std::string& field, const std::string& message) {
-    throw InputError("foliage options", field, message);
-  };
-  if (!(o.leaves_per_metre >= 0.0) || !std::isfinite(o.leaves_per_metre)) {
-    fail("leaves_per_metre", fmt::format("expected >= 0, got {}", o.leaves_per_metre));
-  }
-  if (!(o.leaf_length_m > 0.0) || !std::isfinite(o.leaf_length_m)) {
-    fail("leaf_length_m", fmt::format("expected > 0 m, got {}", o.leaf_length_m));
-  }
-  if (!(o.start_fraction >= 0.0 && o.start_fraction < 1.0)) {
-    fail("start_fraction", fmt::format("expected in [0, 1), got {}", o.start_fraction));
-  }
-  if (!std::isfinite(o.tilt_rad) || !(o.size_jitter >= 0.0 && o.size_jitter < 1.0) ||
-      !(o.angle_jitter_rad >= 0.0) || !std::isfinite(o.angle_jitter_rad)) {
-    fail("tilt_rad", "expected finite angles and a size jitter in [0, 1)");
-  }
-  if (o.max_leaves < 0) fail("max_leaves", fmt::format("expected >= 0, got {}", o.max_leaves));
-  if (!(model_length > 0.0f) || !std::isfinite(model_length)) {
-    fail("model_length",
-         fmt::format("expected a leaf model of positive length, got {}", model_length));
-  }
-}
 
 // The leaf frame (x along the leaf, z its upper side's normal) for a leaf pointing along `axis`:
 // z as close to world up as the axis allows.
@@ -53,6 +30,25 @@ Eigen::Quaternionf LeafFrame(const Eigen::Vector3d& axis, double roll) {
 
 }  // namespace
 
+void FoliageOptions::Validate() const {
+  const auto check = [](bool ok, const std::string& field, const std::string& message) {
+    dynamics::CheckOption(ok, "foliage options", field, message);
+  };
+  check(leaves_per_metre >= 0.0 && std::isfinite(leaves_per_metre), "leaves_per_metre",
+        fmt::format("expected >= 0, got {}", leaves_per_metre));
+  check(leaf_length_m > 0.0 && std::isfinite(leaf_length_m), "leaf_length_m",
+        fmt::format("expected > 0 m, got {}", leaf_length_m));
+  check(start_fraction >= 0.0 && start_fraction < 1.0, "start_fraction",
+        fmt::format("expected in [0, 1), got {}", start_fraction));
+  check(std::isfinite(tilt_rad), "tilt_rad",
+        fmt::format("expected a finite angle, got {}", tilt_rad));
+  check(size_jitter >= 0.0 && size_jitter < 1.0, "size_jitter",
+        fmt::format("expected in [0, 1), got {}", size_jitter));
+  check(angle_jitter_rad >= 0.0 && std::isfinite(angle_jitter_rad), "angle_jitter_rad",
+        fmt::format("expected a finite angle >= 0, got {}", angle_jitter_rad));
+  check(max_leaves >= 0, "max_leaves", fmt::format("expected >= 0, got {}", max_leaves));
+}
+
 std::vector<int> NodeOffsets(const Tree& tree) {
   std::vector<int> offsets(tree.branches.size() + 1, 0);
   for (size_t b = 0; b < tree.branches.size(); ++b) {
@@ -63,7 +59,11 @@ std::vector<int> NodeOffsets(const Tree& tree) {
 
 std::vector<LeafInstance> PlaceLeaves(const Tree& tree, float model_length,
                                       const FoliageOptions& options) {
-  CheckOptions(options, model_length);
+  options.Validate();
+  if (!(model_length > 0.0f) || !std::isfinite(model_length)) {
+    throw InputError("foliage", "model_length",
+                     fmt::format("expected a leaf model of positive length, got {}", model_length));
+  }
   const std::vector<int> offsets = NodeOffsets(tree);
   const std::vector<std::vector<int>> children = tree.Children();
 

@@ -15,14 +15,17 @@
 namespace simtree::viewer {
 
 struct FoliageOptions {
-  double leaves_per_metre = 30.0;  // along each terminal branch
-  double leaf_length_m = 0.12;     // petiole base to blade tip
-  double start_fraction = 0.25;    // leaves from this fraction of the branch length to the tip
-  double tilt_rad = 0.8;           // leaf axis from the branch axis towards the radial direction
-  double size_jitter = 0.2;        // relative spread of leaf sizes
-  double angle_jitter_rad = 0.35;  // spread of the spiral angle and of the roll
-  int max_leaves = 20000;          // a cap, spread evenly over the tree
-  uint64_t seed = 1;
+  double leaves_per_metre = 30.0;  // along each terminal branch (1/m, >= 0)
+  double leaf_length_m = 0.12;     // petiole base to blade tip (m, > 0)
+  double start_fraction = 0.25;    // leaves from this fraction of the branch length on (in [0, 1))
+  double tilt_rad = 0.8;     // leaf axis from the branch axis towards the radial direction (rad)
+  double size_jitter = 0.2;  // relative spread of leaf sizes (in [0, 1))
+  double angle_jitter_rad = 0.35;  // spread of the spiral angle and of the roll (rad, >= 0)
+  int max_leaves = 20000;          // a cap (>= 0), spread evenly over the tree
+  uint64_t seed = 1;               // same seed, same leaves
+
+  // Throws InputError ("foliage options", the field) for a value out of range.
+  void Validate() const;
 };
 
 // One leaf in the rest pose: its base point and orientation relative to the node it rides.
@@ -34,9 +37,9 @@ struct LeafInstance {
   float scale = 1.0f;  // multiplies the leaf model (already normalised to leaf_length_m)
 };
 
-// Throws InputError for options out of range (NaN, negative density or size, start past 1).
-// `model_length` is the leaf model's own length (LeafModel::Length()), so `scale` makes each leaf
-// about `leaf_length_m` long.
+// Throws InputError for options out of range (options.Validate()) or a model length that is not
+// positive. `model_length` is the leaf model's own length (LeafModel::Length()), so `scale` makes
+// each leaf about `leaf_length_m` long.
 std::vector<LeafInstance> PlaceLeaves(const Tree& tree, float model_length,
                                       const FoliageOptions& options = {});
 

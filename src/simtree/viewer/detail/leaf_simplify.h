@@ -21,7 +21,10 @@ struct LeafSimplifyOptions {
   double tolerance = 0.01;
   // Blades with more vertices are kept as they are: the greedy search is quadratic, and a model
   // that large was made for close-ups.
-  int max_blade_vertices = 1000;
+  int max_blade_vertices = 1000;  // >= 0
+
+  // Throws InputError ("leaf simplification", the field) for a value out of range.
+  void Validate() const;
 };
 
 struct LeafSimplifyResult {
@@ -31,8 +34,8 @@ struct LeafSimplifyResult {
   double max_error = 0.0;  // the largest accepted collapse's or thinning's distance, leaf units
 };
 
-// Throws InputError for a tolerance that is negative or NaN. The model is assumed valid (as
-// ParseLeafModel returns it).
+// Throws InputError for options out of range (options.Validate()). The model is assumed valid
+// (as ParseLeafModel returns it).
 LeafSimplifyResult SimplifyLeafModel(const LeafModel& model, const LeafSimplifyOptions& options);
 
 }  // namespace simtree::viewer

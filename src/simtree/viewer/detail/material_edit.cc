@@ -32,6 +32,10 @@ const char* ToString(MaterialProperty property) {
   return "?";
 }
 
+const char* ToString(MaterialScope scope) {
+  return scope == MaterialScope::kLevel ? "level" : "branch";
+}
+
 MaterialProperty ParseMaterialProperty(const std::string& name, const std::string& where) {
   if (name == "frequency") return MaterialProperty::kFrequency;
   if (name == "damping") return MaterialProperty::kDamping;

@@ -15,6 +15,10 @@ namespace simtree::viewer {
 
 enum class MaterialProperty { kFrequency, kDamping, kStiffness };
 
+// What an edit applies to: one branch, or every branch of its level.
+enum class MaterialScope { kBranch, kLevel };
+const char* ToString(MaterialScope scope);  // "branch", "level"
+
 // The demo's slider ranges: 0.1-10 Hz, 0.005-1, 100-50000 N/m.
 struct PropertyRange {
   double min = 0.0, max = 0.0;

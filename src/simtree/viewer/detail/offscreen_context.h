@@ -15,15 +15,23 @@ namespace simtree::viewer {
 enum class OffscreenBackend { kAuto, kEgl, kXvfb };
 
 struct OffscreenOptions {
-  int width = 1280;
-  int height = 720;
-  int samples = 4;  // multisample anti-aliasing (0 = off)
-  OffscreenBackend backend = OffscreenBackend::kAuto;
+  int width = 1280;  // pixels, 1 to 16384
+  int height = 720;  // pixels, 1 to 16384
+  int samples = 4;   // multisample anti-aliasing samples per pixel (0 = off, at most 16)
+  OffscreenBackend backend = OffscreenBackend::kAuto;  // kAuto: EGL, else Xvfb
+
+  // Throws InputError ("offscreen options", the field) for a value out of range.
+  void Validate() const;
 };
+
+// The size and multisampling of a framebuffer, window or offscreen: 1 to 16384 pixels each way,
+// 0 to 16 samples. Throws InputError(source, "width" / "height" / "samples", ...) otherwise.
+void ValidateFramebuffer(int width, int height, int samples, const std::string& source);
 
 class OffscreenContext {
  public:
-  // Makes the context current. Throws simtree::Error naming what failed when no backend works.
+  // Makes the context current. Throws InputError for options out of range, and simtree::Error
+  // naming what failed when no backend works.
   explicit OffscreenContext(const OffscreenOptions& options);
   ~OffscreenContext();
   OffscreenContext(const OffscreenContext&) = delete;

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "simtree/core/error.h"
+#include "simtree/dynamics/detail/check_option.h"
 
 namespace simtree::viewer {
 namespace {
@@ -35,10 +36,17 @@ double RaySegment(const Ray& ray, const Eigen::Vector3d& a, const Eigen::Vector3
 
 }  // namespace
 
+void PickOptions::Validate() const {
+  dynamics::CheckOption(std::isfinite(min_radius_px) && min_radius_px >= 0.0, "pick options",
+                        "min_radius_px",
+                        fmt::format("expected a width >= 0 pixels, got {}", min_radius_px));
+}
+
 std::optional<BranchHit> PickBranch(const Tree& tree,
                                     std::span<const Eigen::Vector3f> node_positions,
                                     const CameraView& camera, const Ray& ray,
                                     const PickOptions& options) {
+  options.Validate();
   if (static_cast<int>(node_positions.size()) != tree.NodeCount()) {
     throw InputError("pick", "node_positions",
                      fmt::format("expected {} nodes (the tree's), got {}", tree.NodeCount(),

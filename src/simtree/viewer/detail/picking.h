@@ -14,7 +14,10 @@
 namespace simtree::viewer {
 
 struct PickOptions {
-  double min_radius_px = 4.0;  // a capsule is at least this many pixels wide where it is hit
+  double min_radius_px = 4.0;  // a capsule is at least this wide where it is hit (pixels, >= 0)
+
+  // Throws InputError ("pick options", the field) for a value out of range.
+  void Validate() const;
 };
 
 struct BranchHit {
@@ -25,7 +28,8 @@ struct BranchHit {
 };
 
 // `node_positions`: the deformed nodes, branch by branch, base to tip (TreeDynamics order); the
-// rest tree gives the arc lengths. Throws InputError when the node count does not match the tree.
+// rest tree gives the arc lengths. Throws InputError when the node count does not match the tree
+// or for options out of range.
 std::optional<BranchHit> PickBranch(const Tree& tree,
                                     std::span<const Eigen::Vector3f> node_positions,
                                     const CameraView& camera, const Ray& ray,

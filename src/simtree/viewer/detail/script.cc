@@ -107,26 +107,28 @@ ScriptAction ParseAction(const TextLine& line, const std::string& source) {
       break;
     case ScriptVerb::kWind:
       p.Arity(1, 1, "wind on|off|SPEED");
-      a.text = p.Word(1);
-      if (a.text != "on" && a.text != "off") {
+      if (p.Word(1) == "on" || p.Word(1) == "off") {
+        a.on = p.Word(1) == "on";
+      } else {
         a.numbers = {p.Number(1, "SPEED")};
         if (a.numbers[0] < 0) p.Fail("expected a speed >= 0 m/s");
       }
       break;
     case ScriptVerb::kLeaves:
       p.Arity(1, 1, "leaves on|off");
-      a.text = p.Word(1);
-      if (a.text != "on" && a.text != "off") p.Fail("expected on or off");
+      if (p.Word(1) != "on" && p.Word(1) != "off") p.Fail("expected on or off");
+      a.on = p.Word(1) == "on";
       break;
     case ScriptVerb::kMaterial: {
       p.Arity(4, 4, "material branch|level ID frequency|damping|stiffness VALUE");
       const std::string& target = p.Word(1);
       if (target != "branch" && target != "level") p.Fail("expected branch or level");
+      a.scope = target == "level" ? MaterialScope::kLevel : MaterialScope::kBranch;
       a.branch = p.Count(2, "ID", 0);
-      a.text = target + " " + p.Word(3);
       if (p.Word(3) != "frequency" && p.Word(3) != "damping" && p.Word(3) != "stiffness") {
         p.Fail("expected frequency, damping or stiffness");
       }
+      a.property = ParseMaterialProperty(p.Word(3), "material");
       a.numbers = {p.Number(4, "VALUE")};
       break;
     }

@@ -22,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include "simtree/viewer/detail/material_edit.h"
+
 namespace simtree::viewer {
 
 enum class ScriptVerb {
@@ -50,9 +52,12 @@ struct ScriptAction {
   ScriptVerb verb = ScriptVerb::kWait;
   int line = 0;                 // in the script, for messages
   std::vector<double> numbers;  // pixel coordinates, frame counts, values, in the order written
-  std::string text;             // path, key name, on/off, "branch"/"level", property name
+  std::string text;             // screenshot path, key name
+  bool on = false;              // wind on|off (without a SPEED), leaves on|off
   int branch = -1;              // pick-branch, material branch|level ID
   double arc_length = -1.0;     // pick-branch: negative = the tip
+  MaterialScope scope = MaterialScope::kBranch;              // material branch|level
+  MaterialProperty property = MaterialProperty::kFrequency;  // material's property
 };
 
 // Parses a script; `source` names it in errors (InputError with the line and what was expected).

@@ -1,20 +1,19 @@
-#include "simtree/viewer/detail/live_pull.h"
+#include "simtree/dynamics/live_pull.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace simtree::viewer {
+namespace simtree::dynamics {
 
-LivePull::LivePull(dynamics::TreeDynamics& sim, const dynamics::PullSchedule& schedule)
-    : schedule_(schedule) {
+LivePull::LivePull(TreeDynamics& sim, const PullSchedule& schedule) : schedule_(schedule) {
   rope_ = schedule.rope;
   const int probe = sim.AttachRope(rope_);
   full_tension_ = sim.RopeTension(probe);
   sim.ReleaseRope(probe);
-  rope_.mode = dynamics::Rope::Mode::kForce;
+  rope_.mode = Rope::Mode::kForce;
 }
 
-void LivePull::Apply(dynamics::TreeDynamics& sim) {
+void LivePull::Apply(TreeDynamics& sim) {
   if (!schedule_) return;
   if (rope_id_ >= 0 && !sim.HasRope(rope_id_)) rope_id_ = -1;  // released by someone else
   const double factor = schedule_->Factor(sim.time());
@@ -40,16 +39,23 @@ double HighestModeFrequency(const Tree& tree) {
   return f > 0.0 ? f : 1.0;
 }
 
-int AdvanceFrame(dynamics::TreeDynamics& sim, LivePull& pull, double frame_dt) {
-  if (!(frame_dt > 0.0)) return 0;
-  const double max_dt = 1.0 / (20.0 * HighestModeFrequency(sim.tree()));
-  const int steps = std::max(1, static_cast<int>(std::ceil(frame_dt / max_dt - 1e-9)));
-  const double dt = frame_dt / steps;
-  for (int i = 0; i < steps; ++i) {
-    pull.Apply(sim);
-    sim.Step(dt);
-  }
-  return steps;
+double AutomaticMaxStep(const Tree& tree) { return 1.0 / (20.0 * HighestModeFrequency(tree)); }
+
+FrameSplit SplitFrame(double frame_dt, double max_dt) {
+  FrameSplit split;
+  split.steps = std::max(1, static_cast<int>(std::ceil(frame_dt / max_dt - 1e-9)));
+  split.dt = frame_dt / split.steps;
+  return split;
 }
 
-}  // namespace simtree::viewer
+int AdvanceFrame(TreeDynamics& sim, LivePull& pull, double frame_dt) {
+  if (!(frame_dt > 0.0)) return 0;
+  const FrameSplit split = SplitFrame(frame_dt, AutomaticMaxStep(sim.tree()));
+  for (int i = 0; i < split.steps; ++i) {
+    pull.Apply(sim);
+    sim.Step(split.dt);
+  }
+  return split.steps;
+}
+
+}  // namespace simtree::dynamics
