@@ -25,7 +25,7 @@ std::string FindChromium() {
   return "";
 }
 
-class Browser : public ::testing::Test {
+class ReportBrowser : public ::testing::Test {
  protected:
   void SetUp() override {
     chromium_ = FindChromium();
@@ -90,7 +90,7 @@ Eigen::Vector3d Position(const nlohmann::json& probe) {
           probe["position"][2].get<double>()};
 }
 
-TEST_F(Browser, ThePageRendersWithoutErrors) {
+TEST_F(ReportBrowser, ThePageRendersWithoutErrors) {
   const PageState s = DumpDom("", 1500);
   EXPECT_EQ(s.state, "ok") << s.status;
   EXPECT_EQ(s.status.rfind("ok: ", 0), 0u) << s.status;
@@ -100,7 +100,7 @@ TEST_F(Browser, ThePageRendersWithoutErrors) {
   ASSERT_TRUE(s.probe.is_object()) << "no probe written";
 }
 
-TEST_F(Browser, TheAnimationMovesTheTree) {
+TEST_F(ReportBrowser, TheAnimationMovesTheTree) {
   // Opened paused at two times: before the pull and while the rope holds the branch.
   const PageState rest = DumpDom("#t=0", 500);
   const PageState held = DumpDom("#t=0.9", 500);
@@ -116,7 +116,7 @@ TEST_F(Browser, TheAnimationMovesTheTree) {
   EXPECT_GT(playing.probe["t"].get<double>(), 0.5) << playing.probe.dump();
 }
 
-TEST_F(Browser, TwoScreenshotsOfTheViewDiffer) {
+TEST_F(ReportBrowser, TwoScreenshotsOfTheViewDiffer) {
   const auto shot = [&](const std::string& hash, const std::string& name) {
     const fs::path png = dir_ / name;
     Run(hash, "--screenshot=\"" + png.string() + "\"", 800);

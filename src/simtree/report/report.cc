@@ -74,7 +74,9 @@ std::string BuildReportHtml(const std::filesystem::path& result_dir, const Repor
   const JavaScriptLibraries libraries = LoadJavaScriptLibraries(
       options.javascript_dir.empty() ? DefaultJavaScriptDir() : options.javascript_dir);
   if (!libraries.complete() && !options.allow_missing_javascript) {
-    throw Error("report: " + libraries.missing);
+    std::string missing = libraries.missing;
+    while (!missing.empty() && missing.back() == '\n') missing.pop_back();
+    throw Error("report: " + missing);
   }
   ReportResult out;
   PageContext page(folder, options, libraries.complete());

@@ -313,7 +313,7 @@
     grid.position.set(cx, m.lo[2], -cy);
     scene.add(grid);
     var camera = new THREE.PerspectiveCamera(35, width / height, m.size / 500, m.size * 100);
-    camera.position.set(cx, cz + 0.15 * m.size, -cy + 2.3 * m.size);  // in front: looking along +Y
+    camera.position.set(cx, cz + 0.12 * m.size, -cy + 1.9 * m.size);  // in front: looking along +Y
     var controls = new THREE.OrbitControls(camera, renderer.domElement);
     controls.target.set(cx, cz, -cy);
     controls.update();

@@ -92,15 +92,23 @@ std::optional<AnimationDecor::Rope> RopeOf(const dynamics::NodeFrames& frames,
   return AnimationDecor::Rope{best, sim->pull->anchor, sim->pull->hold_s, sim->pull->release_s};
 }
 
+std::string NodesSent(int stride) {
+  if (stride <= 1) return "every node";
+  return fmt::format(
+      "one node in {} of each branch and its tip; the page moves the others with "
+      "their neighbours",
+      stride);
+}
+
 std::string Facts(const AnimationReport& a, const std::optional<SimulationInfo>& sim) {
   HtmlTable table({"", ""}, "facts");
   table.AddRow({"simulated", fmt::format("{} nodes, {} frames at {:.0f} fps ({:.2f} s)", a.nodes,
                                          a.frames, a.fps, (a.frames - 1) / a.fps)});
   table.AddRow(
       {"in this page",
-       fmt::format("{} nodes (every {} of a branch, and its tip), {} frames at {:.1f} fps, "
-                   "16-bit positions ({:.0f} \xC2\xB5m steps): {}",
-                   a.sent_nodes, a.node_stride, a.sent_frames, a.sent_fps,
+       fmt::format("{} nodes ({}), {} frames at {:.1f} fps, 16-bit positions ({:.0f} \xC2\xB5m "
+                   "steps): {}",
+                   a.sent_nodes, NodesSent(a.node_stride), a.sent_frames, a.sent_fps,
                    1e6 * a.quantisation_step_m, FormatBytes(a.bytes))});
   if (sim && sim->pull) {
     table.AddRow(
@@ -145,6 +153,13 @@ Section BuildAnimationSection(PageContext& page, int64_t budget_bytes, Animation
     return s;
   }
   s.present = true;
+  if (!page.scripts()) {
+    s.LeftOut(
+        fmt::format("The 3D view needs the JavaScript libraries, which are not in this "
+                    "page ({} nodes, {} frames simulated).",
+                    frames.node_count, frames.frame_count));
+    return s;
+  }
   const std::optional<SimulationInfo> sim = ReadSimulationInfo(folder);
   const AnimationPlan plan = PlanAnimation(frames, budget_bytes, page.options().min_animation_fps);
   if (!plan.fits) {
@@ -156,18 +171,12 @@ Section BuildAnimationSection(PageContext& page, int64_t budget_bytes, Animation
   decor.rope = RopeOf(frames, sim);
   AnimationReport local;
   AnimationReport& a = report ? *report : local;
-  nlohmann::json payload = AnimationPayload(frames, plan, decor, &a);
-  if (!page.scripts()) {
-    s.LeftOut("The 3D view needs the JavaScript libraries, which are not in this page.");
-  } else {
-    page.SetData("animation", std::move(payload));
-    s.html += kViewerHtml;
-  }
+  page.SetData("animation", AnimationPayload(frames, plan, decor, &a));
+  s.html += kViewerHtml;
   if (a.sent_fps < a.fps || a.node_stride > 1) {
     s.notes.push_back(
-        fmt::format("The animation is sent at {:.1f} of {:.0f} fps with every {} "
-                    "node to fit its budget.",
-                    a.sent_fps, a.fps, a.node_stride));
+        fmt::format("The animation is sent at {:.1f} of {:.0f} fps with {} to fit its budget.",
+                    a.sent_fps, a.fps, NodesSent(a.node_stride)));
   }
   s.html += Facts(a, sim);
   return s;
