@@ -67,6 +67,9 @@ TEST(Report, ShowsEverySectionWhoseFilesAreThere) {
   EXPECT_EQ(result.animation.sent_frames, 121);
   EXPECT_GT(result.library_bytes, 1'000'000);
   EXPECT_EQ(result.bytes, static_cast<int64_t>(html.size()));
+  EXPECT_NE(html.find("<title>simtree report: full_result</title>"), std::string::npos);
+  const std::string slash = BuildReportHtml(FullResult().string() + "/", {});
+  EXPECT_NE(slash.find("<title>simtree report: full_result</title>"), std::string::npos);
 }
 
 TEST(Report, TheDataBlockHasWhatTheChartsAndTheViewerRead) {

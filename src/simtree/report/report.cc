@@ -21,6 +21,13 @@ namespace {
 // Room kept for what the page adds around the animation's arrays (its JSON keys, the viewer).
 constexpr int64_t kPageMargin = 64 * 1024;
 
+// "result" for "out/result", "out/result/" and "out/result/." alike.
+std::string FolderName(const std::filesystem::path& dir) {
+  std::filesystem::path p = std::filesystem::absolute(dir).lexically_normal();
+  if (p.filename().empty()) p = p.parent_path();
+  return p.filename().empty() ? p.string() : p.filename().string();
+}
+
 std::string Subtitle(const ResultFolder& folder) {
   std::string out =
       "Result folder " + std::filesystem::absolute(folder.root).lexically_normal().string();
@@ -81,12 +88,7 @@ std::string BuildReportHtml(const std::filesystem::path& result_dir, const Repor
   ReportResult out;
   PageContext page(folder, options, libraries.complete());
   PageParts parts;
-  parts.title =
-      options.title.empty()
-          ? "simtree report: " +
-                std::filesystem::absolute(result_dir).lexically_normal().filename().string()
-          : options.title;
-  if (parts.title == "simtree report: ") parts.title += result_dir.string();
+  parts.title = options.title.empty() ? "simtree report: " + FolderName(result_dir) : options.title;
   parts.subtitle = Subtitle(folder);
   parts.libraries = &libraries;
   for (auto build :
