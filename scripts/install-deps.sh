@@ -18,8 +18,10 @@ packages=(
   nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev libtinygltf-dev
   # viewer and headless rendering
   libglfw3-dev libgl-dev libegl-dev libegl-mesa0 libimgui-dev libgl1-mesa-dri xvfb xauth
-  # tests and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev python3-open3d python3-jsonschema
+  # the HTML report: three.js r111 and Chart.js, inlined into report.html (docs/report.md)
+  libjs-three libjs-chart.js
+  # tests and benchmarks (chromium: the report's end-to-end test opens it headless)
+  libgtest-dev libgmock-dev libbenchmark-dev python3-open3d python3-jsonschema chromium
 )
 
 missing=()

@@ -52,6 +52,7 @@ int main(int argc, char** argv) {
   RegisterRender(app);
   RegisterRun(app);
   RegisterEval(app);
+  RegisterReport(app);
   RegisterConvert(app);
   RegisterMesh(app);
   RegisterInfo(app);

@@ -18,6 +18,7 @@ void RegisterView(CLI::App& app);
 void RegisterRender(CLI::App& app);
 void RegisterRun(CLI::App& app);
 void RegisterEval(CLI::App& app);
+void RegisterReport(CLI::App& app);
 void RegisterConvert(CLI::App& app);
 void RegisterMesh(CLI::App& app);
 void RegisterInfo(CLI::App& app);
