@@ -95,5 +95,29 @@ TEST(CaptureViews, AFolderOfNothingIsAnError) {
   EXPECT_THROW(LoadViews(dir), InputError);
 }
 
+TEST(CaptureViews, NonsenseOptionsAreRefusedBeforeTheInputIsRead) {
+  PreprocessOptions options;
+  options.outlier_std_ratio = 0.0;
+  try {
+    LoadViews(test::TempDir() / "missing", options);
+    FAIL() << "a zero outlier ratio accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "outlier_std_ratio");
+  }
+}
+
+TEST(CaptureViews, AMissingFieldOfPreprocessJsonIsNamed) {
+  const fs::path dir = test::TempDir();
+  test::WriteText(dir / "preprocess.json",
+                  "{\"format\": \"simtree.preprocess\", \"version\": 1, \"views\": "
+                  "[{\"cloud\": null}]}");
+  try {
+    LoadViews(dir);
+    FAIL() << "a view without its fields accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "views[0].name");
+  }
+}
+
 }  // namespace
 }  // namespace simtree::preprocessing

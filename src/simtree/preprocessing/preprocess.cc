@@ -24,6 +24,8 @@ nlohmann::ordered_json Vector(const Eigen::Vector3d& v) { return {v.x(), v.y(), 
 std::vector<PreprocessedView> PreprocessCaptureViews(const Capture& capture,
                                                      const PreprocessOptions& preprocess,
                                                      const DepthToCloudOptions& depth) {
+  preprocess.Validate();
+  depth.Validate();
   std::vector<PreprocessedView> views;
   Progress progress("preprocess", static_cast<int64_t>(capture.views.size()), "views");
   for (const ScanView& scan : capture.views) {
@@ -46,6 +48,7 @@ std::vector<PreprocessedView> PreprocessCaptureViews(const Capture& capture,
 std::vector<PreprocessedView> PreprocessCloudFiles(const std::vector<fs::path>& files,
                                                    const Eigen::Vector3d& up,
                                                    const PreprocessOptions& preprocess) {
+  preprocess.Validate();
   std::vector<PreprocessedView> views;
   for (const fs::path& file : files) {
     PreprocessedView view;
@@ -65,6 +68,8 @@ std::vector<PreprocessedView> PreprocessCloudFiles(const std::vector<fs::path>& 
 std::vector<PreprocessedView> LoadViews(const fs::path& input, const PreprocessOptions& preprocess,
                                         const DepthToCloudOptions& depth,
                                         const Eigen::Vector3d& cloud_up) {
+  preprocess.Validate();
+  depth.Validate();
   if (!fs::is_directory(input)) {
     throw InputError(input.string(), "",
                      "expected a folder: a capture (scans/), the output of `simtree preprocess` "
@@ -147,46 +152,33 @@ void WritePreprocessedViews(const std::vector<PreprocessedView>& views, const fs
 }
 
 std::vector<PreprocessedView> ReadPreprocessedViews(const fs::path& folder) {
-  const fs::path path = folder / "preprocess.json";
-  const JsonReader json(path.string());
-  const nlohmann::json doc = ParseJson(ReadFile(path), path.string());
-  json.Object(doc, "");
-  if (json.String(json.Field(doc, "format", ""), "format") != kPreprocessFormat) {
-    json.Fail("format", fmt::format("expected \"{}\"", kPreprocessFormat));
-  }
-  if (json.Integer(json.Field(doc, "version", ""), "version") != kPreprocessFormatVersion) {
-    json.Fail("version", fmt::format("expected {}", kPreprocessFormatVersion));
-  }
-  const nlohmann::json& list = json.Array(json.Field(doc, "views", ""), "views");
+  const JsonDocument file = ReadJsonDocument(folder / "preprocess.json");
+  const JsonNode doc = file.root();
+  CheckFormat(doc, kPreprocessFormat, kPreprocessFormatVersion);
   std::vector<PreprocessedView> views;
-  for (size_t i = 0; i < list.size(); ++i) {
-    const std::string at = Element("views", i);
-    const nlohmann::json& v = json.Object(list[i], at);
+  for (const JsonNode& v : doc.Field("views").Items()) {
     PreprocessedView view;
-    view.name = json.String(json.Field(v, "name", at), Member(at, "name"));
-    const nlohmann::json& cloud = json.Field(v, "cloud", at);
+    view.name = v.String("name");
+    const JsonNode cloud = v.Field("cloud");
     if (cloud.is_null()) {
-      view.failure = json.Has(v, "failure") ? json.String(v["failure"], Member(at, "failure"))
-                                            : std::string("failed in preprocessing");
+      const auto failure = v.Find("failure");
+      view.failure = failure ? failure->String() : std::string("failed in preprocessing");
       views.push_back(std::move(view));
       continue;
     }
     PreprocessResult r;
-    r.cloud = ReadPointCloud(folder / json.String(cloud, Member(at, "cloud")));
-    r.up = json.Vector3(json.Field(v, "up", at), Member(at, "up")).normalized();
-    const nlohmann::json& ground = json.Field(v, "ground", at);
+    r.cloud = ReadPointCloud(folder / cloud.String());
+    r.up = v.Vector3("up").normalized();
+    const JsonNode ground = v.Field("ground");
     if (!ground.is_null()) {
-      const std::string g_at = Member(at, "ground");
       GroundPlane g;
-      g.normal = json.Vector3(json.Field(ground, "normal", g_at), Member(g_at, "normal"));
-      g.normal.normalize();
-      g.offset = json.Number(json.Field(ground, "offset", g_at), Member(g_at, "offset"));
-      g.noise_m = json.Number(json.Field(ground, "noise_m", g_at), Member(g_at, "noise_m"));
+      g.normal = ground.Vector3("normal").normalized();
+      g.offset = ground.Number("offset");
+      g.noise_m = ground.Number("noise_m");
       r.ground = g;
     }
-    r.point_spacing_m =
-        json.Number(json.Field(v, "point_spacing_m", at), Member(at, "point_spacing_m"));
-    r.voxel_size_m = json.Number(json.Field(v, "voxel_size_m", at), Member(at, "voxel_size_m"));
+    r.point_spacing_m = v.Number("point_spacing_m");
+    r.voxel_size_m = v.Number("voxel_size_m");
     view.result = std::move(r);
     views.push_back(std::move(view));
   }
