@@ -1,13 +1,11 @@
 #include <filesystem>
 #include <memory>
 
-#include <oneapi/tbb/parallel_for.h>
 #include <spdlog/spdlog.h>
 
 #include "cli_common.h"
 #include "simtree/core/atomic_file.h"
 #include "simtree/core/error.h"
-#include "simtree/core/progress.h"
 #include "simtree/io/image_io.h"
 #include "simtree/io/point_cloud_io.h"
 #include "simtree/preprocessing/preprocess.h"
@@ -74,26 +72,9 @@ void RegisterRegister(CLI::App& app) {
                 "simtree register scene/ --out reg/ --coarse entire_tree --no-priors"}));
   verb->callback([args] {
     RefuseToReplaceInputs(args->output, args->input);
-    const std::vector<preprocessing::PreprocessedView> preprocessed =
-        preprocessing::LoadViews(args->input, args->preprocess);
-
     registration::RegistrationViewOptions view_options;
     view_options.coarse_input = registration::ParseCoarseInput(args->coarse);
     view_options.key_region.radius_m = args->key_radius;
-    std::vector<registration::RegistrationView> views(preprocessed.size());
-    {
-      Progress progress("prepare", static_cast<int64_t>(views.size()), "views");
-      oneapi::tbb::parallel_for(size_t{0}, views.size(), [&](size_t v) {
-        if (preprocessed[v].result) {
-          views[v] = registration::PrepareView(preprocessed[v].name, *preprocessed[v].result,
-                                               view_options);
-        } else {
-          views[v].name = preprocessed[v].name;
-          views[v].failure = preprocessed[v].failure;
-        }
-        progress.Advance();
-      });
-    }
     registration::MultiViewOptions& mv = args->multiview;
     mv.closed_ring = !args->open_ring;
     mv.pair.run_icp = !args->no_icp;
@@ -101,6 +82,11 @@ void RegisterRegister(CLI::App& app) {
       mv.pair.up_prior = mv.pair.center_prior = mv.pair.snap_to_priors = false;
       mv.pair.trunk_axis_weight = mv.pair.ground_weight = 0.0;
     }
+    // Every option checked before the views are read.
+    view_options.Validate();
+    mv.Validate();
+    const std::vector<registration::RegistrationView> views = registration::PrepareViews(
+        preprocessing::LoadViews(args->input, args->preprocess), view_options);
     const registration::MultiViewResult result = registration::RegisterViews(views, mv);
 
     AtomicDirectory folder(args->output);
@@ -113,7 +99,7 @@ void RegisterRegister(CLI::App& app) {
     folder.Commit();
 
     for (const registration::PairEdge& edge : result.pairs) {
-      if (!edge.result.ok) {
+      if (!edge.result.ok()) {
         spdlog::warn("pair {} -> {}: failed: {}", edge.result.source, edge.result.target,
                      edge.result.status);
       } else if (!edge.consistent) {
@@ -125,7 +111,7 @@ void RegisterRegister(CLI::App& app) {
       }
     }
     for (const registration::ViewRegistration& view : result.views) {
-      if (!view.registered) spdlog::warn("{}: not registered: {}", view.name, view.status);
+      if (!view.registered()) spdlog::warn("{}: not registered: {}", view.name, view.status);
     }
     spdlog::info("registered {} of {} views ({} pairs, {:.1f} s); wrote {}",
                  result.RegisteredCount(), result.views.size(), result.pairs.size(), result.seconds,

@@ -33,12 +33,12 @@ nlohmann::ordered_json PosesToJson(const MultiViewResult& result) {
   for (const ViewRegistration& view : result.views) {
     nlohmann::ordered_json v;
     v["name"] = view.name;
-    v["registered"] = view.registered;
-    v["verified"] = view.verified;
+    v["registered"] = view.registered();
+    v["verified"] = view.verified();
     v["status"] = view.status;
     v["pairs"] = view.pairs;
     v["frame_from_camera"] =
-        view.registered ? PoseToJson(view.frame_from_camera) : nlohmann::ordered_json(nullptr);
+        view.registered() ? PoseToJson(view.frame_from_camera) : nlohmann::ordered_json(nullptr);
     views.push_back(v);
   }
   doc["views"] = views;
@@ -55,7 +55,7 @@ nlohmann::ordered_json PairsToJson(const MultiViewResult& result) {
     nlohmann::ordered_json p;
     p["source"] = r.source;
     p["target"] = r.target;
-    p["ok"] = r.ok;
+    p["ok"] = r.ok();
     p["status"] = r.status;
     p["used"] = edge.used;
     p["consistent"] = edge.consistent;
@@ -90,14 +90,14 @@ std::string PairsMarkdown(const MultiViewResult& result) {
     const PairResult& r = edge.result;
     const char* graph = !edge.used ? "no" : (edge.consistent ? "yes" : "inconsistent");
     out += fmt::format("| {} | {} | {} | {:.0f} | {:.2f} | {:.1f}% | {:.0f}% | {} |\n", r.source,
-                       r.target, r.ok ? "ok" : "FAILED: " + r.status, 1e3 * r.seconds,
+                       r.target, r.ok() ? "ok" : "FAILED: " + r.status, 1e3 * r.seconds,
                        1e3 * r.rmse_m, 100 * r.match_rate, 100 * r.coarse_overlap, graph);
   }
   out += fmt::format("\n{} of {} views registered (anchor {}).\n", result.RegisteredCount(),
                      result.views.size(),
                      result.views.empty() ? "-" : result.views[result.anchor].name);
   for (const ViewRegistration& view : result.views) {
-    if (!view.registered) out += fmt::format("- {} left out: {}\n", view.name, view.status);
+    if (!view.registered()) out += fmt::format("- {} left out: {}\n", view.name, view.status);
   }
   return out;
 }
@@ -116,7 +116,7 @@ RgbImage BeforeAfterPicture(const std::vector<RegistrationView>& views,
     if (!views[v].cloud) continue;
     for (const auto& p : views[v].cloud->points_) before[v].push_back(result.frame_from_anchor * p);
     before_panel.layers.push_back({&before[v], color, 1});
-    if (v < result.views.size() && result.views[v].registered) {
+    if (v < result.views.size() && result.views[v].registered()) {
       for (const auto& p : views[v].cloud->points_) {
         after[v].push_back(result.views[v].frame_from_camera * p);
       }
