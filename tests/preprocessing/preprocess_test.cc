@@ -95,6 +95,18 @@ TEST(CaptureViews, AFolderOfNothingIsAnError) {
   EXPECT_THROW(LoadViews(dir), InputError);
 }
 
+TEST(CaptureViews, ThePullStreamsFirstFrameIsPreprocessedLikeAView) {
+  const Capture capture = OpenCapture(QuickCapture());
+  const PreprocessedView pull = PreprocessPullFrame(capture);
+  EXPECT_EQ(pull.name, "pull_0");
+  ASSERT_TRUE(pull.result) << pull.failure;
+  EXPECT_GT(pull.result->cloud.points_.size(), 1000u);
+  EXPECT_THROW(PreprocessPullFrame(capture, capture.pull->frames.size()), InputError);
+  Capture without = capture;
+  without.pull.reset();
+  EXPECT_THROW(PreprocessPullFrame(without), InputError);
+}
+
 TEST(CaptureViews, NonsenseOptionsAreRefusedBeforeTheInputIsRead) {
   PreprocessOptions options;
   options.outlier_std_ratio = 0.0;

@@ -19,6 +19,25 @@ namespace {
 
 nlohmann::ordered_json Vector(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
+// One RGB-D image (`load`, named `source` in errors) to a clean tree cloud; an InputError
+// (unreadable images, no depth, no tree) becomes the view's failure.
+template <class Load>
+PreprocessedView PreprocessRgbd(const std::string& name, const std::string& source, Load load,
+                                const PreprocessOptions& preprocess,
+                                const DepthToCloudOptions& depth) {
+  PreprocessedView view;
+  view.name = name;
+  try {
+    const RgbdImage image = load();
+    const auto cloud = DepthToCloud(image, depth, source);
+    view.result = PreprocessView(cloud, preprocess, source);
+  } catch (const InputError& e) {
+    view.failure = e.what();
+    spdlog::warn("{}", e.what());
+  }
+  return view;
+}
+
 }  // namespace
 
 std::vector<PreprocessedView> PreprocessCaptureViews(const Capture& capture,
@@ -29,20 +48,31 @@ std::vector<PreprocessedView> PreprocessCaptureViews(const Capture& capture,
   std::vector<PreprocessedView> views;
   Progress progress("preprocess", static_cast<int64_t>(capture.views.size()), "views");
   for (const ScanView& scan : capture.views) {
-    PreprocessedView view;
-    view.name = scan.name;
-    try {
-      const RgbdImage image = LoadScanView(scan);
-      const auto cloud = DepthToCloud(image, depth, scan.directory.string());
-      view.result = PreprocessView(cloud, preprocess, scan.directory.string());
-    } catch (const InputError& e) {
-      view.failure = e.what();
-      spdlog::warn("{}", e.what());
-    }
-    views.push_back(std::move(view));
+    views.push_back(PreprocessRgbd(
+        scan.name, scan.directory.string(), [&] { return LoadScanView(scan); }, preprocess, depth));
     progress.Advance();
   }
   return views;
+}
+
+PreprocessedView PreprocessPullFrame(const Capture& capture, size_t index,
+                                     const PreprocessOptions& preprocess,
+                                     const DepthToCloudOptions& depth) {
+  preprocess.Validate();
+  depth.Validate();
+  if (!capture.pull) {
+    throw InputError(capture.root.string(), "pull/", "expected a pull-test stream, found none");
+  }
+  const PullStream& pull = *capture.pull;
+  if (index >= pull.frames.size()) {
+    throw InputError(
+        (pull.directory / "frames.csv").string(), "",
+        fmt::format("expected a frame {}, the stream has {}", index, pull.frames.size()));
+  }
+  return PreprocessRgbd(
+      fmt::format("pull_{}", pull.frames[index].frame),
+      (pull.directory / pull.frames[index].depth).string(),
+      [&] { return LoadPullFrame(pull, index); }, preprocess, depth);
 }
 
 std::vector<PreprocessedView> PreprocessCloudFiles(const std::vector<fs::path>& files,
