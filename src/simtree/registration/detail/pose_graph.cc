@@ -14,16 +14,6 @@ namespace {
 
 namespace reg = open3d::pipelines::registration;
 
-double RotationDeg(const Eigen::Isometry3d& t) {
-  return std::abs(Eigen::AngleAxisd(t.linear()).angle()) * 180.0 / std::numbers::pi;
-}
-
-// A point that stands for where a view's tree is (its key region's centre, else its centroid).
-Eigen::Vector3d LeverPoint(const RegistrationView& view) {
-  if (view.key_region) return view.key_region->center;
-  return view.cloud ? view.cloud->GetCenter() : Eigen::Vector3d::Zero();
-}
-
 // The chained poses refined as a pose graph over the usable pairs between reached views, when
 // the graph holds a loop (a pair the chain did not take).
 std::vector<std::optional<Eigen::Isometry3d>> OptimisePoses(
@@ -84,10 +74,10 @@ int JudgePairs(const std::vector<RegistrationView>& views,
     edge.consistent = false;
     if (!usable[e] || !poses[edge.source] || !poses[edge.target]) continue;
     const Eigen::Isometry3d predicted = poses[edge.target]->inverse() * *poses[edge.source];
-    const Eigen::Isometry3d error = predicted.inverse() * edge.result.target_from_source;
-    const Eigen::Vector3d lever = LeverPoint(views[edge.source]);
-    edge.rotation_residual_deg = RotationDeg(error);
-    edge.shift_residual_m = (error * lever - lever).norm();
+    const PoseDifference difference =
+        DifferenceAt(predicted.inverse() * edge.result.target_from_source, views[edge.source]);
+    edge.rotation_residual_deg = difference.rotation_deg;
+    edge.shift_residual_m = difference.shift_m;
     const double excess = std::max(edge.rotation_residual_deg / options.max_pair_rotation_deg,
                                    edge.shift_residual_m / options.max_pair_shift_m);
     edge.consistent = excess <= 1.0;
@@ -100,6 +90,17 @@ int JudgePairs(const std::vector<RegistrationView>& views,
 }
 
 }  // namespace
+
+Eigen::Vector3d LeverPoint(const RegistrationView& view) {
+  if (view.key_region) return view.key_region->center;
+  return view.cloud ? view.cloud->GetCenter() : Eigen::Vector3d::Zero();
+}
+
+PoseDifference DifferenceAt(const Eigen::Isometry3d& error, const RegistrationView& view) {
+  const Eigen::Vector3d lever = LeverPoint(view);
+  return {std::abs(Eigen::AngleAxisd(error.linear()).angle()) * 180.0 / std::numbers::pi,
+          (error * lever - lever).norm()};
+}
 
 ChainedPoses ChainPoses(const std::vector<PairEdge>& pairs, const std::vector<char>& usable,
                         int view_count, int anchor) {

@@ -25,6 +25,18 @@ PoseGraphSolution SolvePoseGraph(const std::vector<RegistrationView>& views,
                                  std::vector<PairEdge> pairs, int anchor,
                                  const MultiViewOptions& options);
 
+// A point that stands for where a view's tree is, not its camera: its key region's centre, else
+// its centroid.
+Eigen::Vector3d LeverPoint(const RegistrationView& view);
+
+// How far apart two poses of one view are, from `error` (one pose's inverse times the other):
+// the angle of its rotation, and how far it moves the view's lever point.
+struct PoseDifference {
+  double rotation_deg = 0.0;
+  double shift_m = 0.0;
+};
+PoseDifference DifferenceAt(const Eigen::Isometry3d& error, const RegistrationView& view);
+
 // Poses (anchor_from_view) of the views reachable from `anchor` through the `usable` pairs, the
 // best-matching pair (PairResult::match_rate) into the known set first; unreached views stay
 // nullopt. `in_tree` marks the pairs the chain took.
