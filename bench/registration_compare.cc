@@ -1,4 +1,4 @@
-// Issue 6's side by side, one command: the paper's Table I (four coarse inputs to SAC-IA) and
+// Registration side by side, one command: the paper's Table I (four coarse inputs to SAC-IA) and
 // Table II (PCA-ICP, F-4PCS-ICP with PCL's FPCS, ours), plus Open3D's FPFH-RANSAC + ICP, on view
 // pairs 36-180 degrees apart of synthetic captures (`simtree synth`, with ground truth), or of
 // the stand-in scene of the tests. For every pair: the paper's columns (time, RMSE, match rate)
@@ -163,391 +163,436 @@ std::string LoadAverage() {
   return one;
 }
 
-}  // namespace
+// Ours' options as they come (named once: a temporary of them trips GCC 12's
+// -Wmaybe-uninitialized in their vectors' destructors).
+const registration::PairOptions kDefaultPairOptions;
 
-int main(int argc, char** argv) {
-  CLI::App app{"Registration side by side: paper Tables I and II, ours and Open3D, against truth"};
-  int synth_seeds = 0, stand_in_seeds = 0, first_seed = 1, table1_scenes = 3, baseline_scenes = 100;
+// The command line.
+struct BenchArgs {
+  int synth_seeds = 0, stand_in_seeds = 0, first_seed = 1, table1_scenes = 3;
+  int baseline_scenes = 100;
   std::string species = "acer_rubrum", stand_in = "tree01.txt", json_path, markdown_path;
   std::vector<std::string> captures;
   fs::path cache = fs::temp_directory_path() / "simtree_registration_bench";
   bool skip_baselines = false, skip_table1 = false, ablations = false, fine_study = false;
   bool views_only = false, skip_paper = false, fine_from_truth = false, old_medial = false;
-  double screen_below_overlap = registration::PairOptions{}.screen_below_overlap;
+  double screen_below_overlap = kDefaultPairOptions.screen_below_overlap;
   std::vector<std::string> only_pairs;
-  app.add_option("--synth-seeds", synth_seeds,
+};
+
+void AddOptions(CLI::App& app, BenchArgs& a) {
+  app.add_option("--synth-seeds", a.synth_seeds,
                  "Synthetic captures to make (seeds from --first-seed)");
-  app.add_option("--first-seed", first_seed, "First seed")->capture_default_str();
-  app.add_option("--species", species, "Species of the synthetic trees")->capture_default_str();
-  app.add_option("--captures", captures, "Capture folders with gt/ (e.g. from `simtree synth`)");
-  app.add_option("--stand-in", stand_in, "Authors' tree for the stand-in scene")
+  app.add_option("--first-seed", a.first_seed, "First seed")->capture_default_str();
+  app.add_option("--species", a.species, "Species of the synthetic trees")->capture_default_str();
+  app.add_option("--captures", a.captures, "Capture folders with gt/ (e.g. from `simtree synth`)");
+  app.add_option("--stand-in", a.stand_in, "Authors' tree for the stand-in scene")
       ->capture_default_str();
-  app.add_option("--seeds", stand_in_seeds, "Stand-in scenes to make");
-  app.add_option("--cache", cache, "Where synthetic captures are kept between runs")
+  app.add_option("--seeds", a.stand_in_seeds, "Stand-in scenes to make");
+  app.add_option("--cache", a.cache, "Where synthetic captures are kept between runs")
       ->capture_default_str();
-  app.add_option("--table1-scenes", table1_scenes,
+  app.add_option("--table1-scenes", a.table1_scenes,
                  "Scenes Table I runs on (its entire-tree row is slow)")
       ->capture_default_str();
-  app.add_option("--baseline-scenes", baseline_scenes, "Scenes the baselines run on")
+  app.add_option("--baseline-scenes", a.baseline_scenes, "Scenes the baselines run on")
       ->capture_default_str();
-  app.add_flag("--skip-baselines", skip_baselines, "Ours only");
-  app.add_flag("--skip-table1", skip_table1, "No Table I");
-  app.add_flag("--skip-paper", skip_paper, "No \"ours without priors\" row");
-  app.add_option("--screen-below", screen_below_overlap,
+  app.add_flag("--skip-baselines", a.skip_baselines, "Ours only");
+  app.add_flag("--skip-table1", a.skip_table1, "No Table I");
+  app.add_flag("--skip-paper", a.skip_paper, "No \"ours without priors\" row");
+  app.add_option("--screen-below", a.screen_below_overlap,
                  "Ours: run the turn screen only for results overlapping less than this")
       ->capture_default_str();
-  app.add_option("--pairs", only_pairs,
+  app.add_option("--pairs", a.only_pairs,
                  "Only these pairs, as source:target view indices (e.g. 7:1), in every scene");
-  app.add_flag("--ablations", ablations, "Ours with each prior left out in turn");
-  app.add_flag("--fine-study", fine_study,
+  app.add_flag("--ablations", a.ablations, "Ours with each prior left out in turn");
+  app.add_flag("--fine-study", a.fine_study,
                "Fine stages (ours, ours without priors, Open3D's ICP) from the same starts");
-  app.add_flag("--fine-from-truth", fine_from_truth,
+  app.add_flag("--fine-from-truth", a.fine_from_truth,
                "Only ours' fine stages (variants of it) from the true pose: no full registration, "
                "no coarse start, no Open3D ICP");
-  app.add_flag("--old-medial", old_medial,
-               "Ours as before round 7: axis points from the normal lines only, the medial fit a "
-               "shift (no rotation)");
-  app.add_flag("--views", views_only,
+  app.add_flag("--old-medial", a.old_medial,
+               "Ours with the axis points from the normal lines only and the medial fit a shift "
+               "(no rotation)");
+  app.add_flag("--views", a.views_only,
                "Each view's trunk and key region in the world frame (by the truth), no pairs");
-  app.add_option("--json", json_path, "Every pair's outcome as JSON");
-  app.add_option("--markdown", markdown_path, "The tables as markdown");
-  CLI11_PARSE(app, argc, argv);
-  open3d::utility::SetVerbosityLevel(open3d::utility::VerbosityLevel::Error);
-  const std::string load_start = LoadAverage();
+  app.add_option("--json", a.json_path, "Every pair's outcome as JSON");
+  app.add_option("--markdown", a.markdown_path, "The tables as markdown");
+}
 
-  // Scenes.
+// The synthetic captures (made once, kept in the cache), the captures given and the stand-in
+// scenes.
+std::vector<Scene> MakeScenes(const BenchArgs& a) {
   std::vector<Scene> scenes;
-  for (int s = 0; s < synth_seeds; ++s) {
-    const uint64_t seed = first_seed + s;
-    const fs::path dir = cache / fmt::format("{}_seed{}", species, seed);
+  for (int s = 0; s < a.synth_seeds; ++s) {
+    const uint64_t seed = a.first_seed + s;
+    const fs::path dir = a.cache / fmt::format("{}_seed{}", a.species, seed);
     if (!fs::exists(dir / "gt" / "scan_poses.json")) {
       synth::SynthOptions options;
-      options.species = species;
+      options.species = a.species;
       options.seed = seed;
       options.duration_s = 4.5;  // the pull stream is not used here: just past its release
       options.contact_sheet = false;
-      fmt::print(stderr, "synth {} seed {} -> {}\n", species, seed, dir.string());
+      fmt::print(stderr, "synth {} seed {} -> {}\n", a.species, seed, dir.string());
       synth::RunSynth(options, dir);
     }
-    scenes.push_back(FromCapture(dir, fmt::format("synth {} seed {}", species, seed)));
+    scenes.push_back(FromCapture(dir, fmt::format("synth {} seed {}", a.species, seed)));
   }
-  for (const std::string& c : captures) scenes.push_back(FromCapture(c, c));
-  for (int s = 0; s < stand_in_seeds; ++s) scenes.push_back(FromStandIn(stand_in, first_seed + s));
-  if (scenes.empty()) {
-    fmt::print(stderr, "no scenes: give --synth-seeds, --captures or --seeds\n");
-    return 2;
+  for (const std::string& c : a.captures) scenes.push_back(FromCapture(c, c));
+  for (int s = 0; s < a.stand_in_seeds; ++s) {
+    scenes.push_back(FromStandIn(a.stand_in, a.first_seed + s));
   }
+  return scenes;
+}
 
-  registration::PairOptions default_options;
-  default_options.screen_below_overlap = screen_below_overlap;
-  registration::RegistrationViewOptions view_options;
-  if (old_medial) {
-    default_options.medial.rotation = false;
-    view_options.projection.silhouette = false;
-  }
-  std::vector<Outcome> outcomes;
-  std::deque<registration::PairResult> ours_results;  // what ours' checks measured, for the JSON
-  auto record = [&](const Scene& scene, size_t s, size_t t, const std::string& method,
-                    const Eigen::Isometry3d& transform, double seconds,
-                    const registration::RegistrationView& vs,
-                    const registration::RegistrationView& vt, bool accepted) {
+// Every method's outcome on every pair, scored against the truth.
+class Recorder {
+ public:
+  explicit Recorder(const registration::PairOptions& match_options)
+      : match_options_(match_options) {}
+
+  void Record(const Scene& scene, size_t s, size_t t, const std::string& method,
+              const Eigen::Isometry3d& transform, double seconds,
+              const registration::RegistrationView& vs, const registration::RegistrationView& vt,
+              bool accepted) {
     Outcome o;
     o.method = method;
     o.scene = scene.label;
     o.source = scene.views[s].name;
     o.target = scene.views[t].name;
-    o.angle_deg =
-        eval::ViewAngleDeg(scene.poses[s].world_from_camera, scene.poses[t].world_from_camera);
+    const Eigen::Isometry3d& world_from_s = scene.poses[s].world_from_camera;
+    const Eigen::Isometry3d& world_from_t = scene.poses[t].world_from_camera;
+    o.angle_deg = eval::ViewAngleDeg(world_from_s, world_from_t);
     o.gap_deg = GapBin(o.angle_deg);
     o.seconds = seconds;
-    const registration::Overlap match =
-        registration::PaperMatch(vs, vt, transform, default_options);
+    const registration::Overlap match = registration::PaperMatch(vs, vt, transform, match_options_);
     o.rmse_m = match.rmse_m;
     o.match_rate = match.share;
-    o.error = eval::PairPoseError(transform, scene.poses[s].world_from_camera,
-                                  scene.poses[t].world_from_camera, scene.tree_points);
+    o.error = eval::PairPoseError(transform, world_from_s, world_from_t, scene.tree_points);
     o.accepted = accepted;
     Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
     for (const Eigen::Vector3d& p : scene.tree_points) centroid += p;
     centroid /= std::max<double>(1.0, static_cast<double>(scene.tree_points.size()));
-    const Eigen::Isometry3d target_from_world = scene.poses[t].world_from_camera.inverse();
-    o.centroid_shift = transform * (scene.poses[s].world_from_camera.inverse() * centroid) -
-                       target_from_world * centroid;
+    const Eigen::Isometry3d target_from_world = world_from_t.inverse();
+    o.centroid_shift =
+        transform * (world_from_s.inverse() * centroid) - target_from_world * centroid;
     const Eigen::AngleAxisd world_error(
-        (scene.poses[t].world_from_camera * transform * scene.poses[s].world_from_camera.inverse())
-            .linear());
+        (world_from_t * transform * world_from_s.inverse()).linear());
     const Eigen::Vector3d error_vector =
         world_error.angle() * world_error.axis() * 180.0 / std::numbers::pi;
     o.yaw_error_deg = error_vector.z();
     o.tilt_error_deg = error_vector.head<2>().norm();
     const Eigen::AngleAxisd target_error(
-        (transform * (target_from_world * scene.poses[s].world_from_camera).inverse()).linear());
+        (transform * (target_from_world * world_from_s).inverse()).linear());
     o.rotation_error_target = target_error.angle() * target_error.axis() * 180.0 / std::numbers::pi;
-    outcomes.push_back(o);
-  };
+    outcomes_.push_back(o);
+  }
+  // Ours' checks, for the JSON (`result` must outlive the recorder).
+  void AttachChecks(const registration::PairResult* result) { outcomes_.back().checks = result; }
+  const std::vector<Outcome>& outcomes() const { return outcomes_; }
 
-  const std::vector<registration::CoarseInput> table1_inputs = {
-      registration::CoarseInput::kEntireTree, registration::CoarseInput::kKeyRegion,
-      registration::CoarseInput::kTreeSkeleton, registration::CoarseInput::kKeyRegionSkeleton};
-  for (size_t k = 0; k < scenes.size(); ++k) {
-    const Scene& scene = scenes[k];
-    fmt::print(stderr, "{}: {} views\n", scene.label, scene.views.size());
-    const size_t n = scene.views.size();
-    auto prepare = [&](const registration::RegistrationViewOptions& options,
-                       std::vector<double>& seconds) {
-      std::vector<registration::RegistrationView> views(n);
-      seconds.assign(n, 0.0);
-      for (size_t v = 0; v < n; ++v) {
-        if (!scene.views[v].result) {
-          views[v].name = scene.views[v].name;
-          views[v].failure = scene.views[v].failure;
-          continue;
-        }
-        const auto start = Clock::now();
-        views[v] = registration::PrepareView(scene.views[v].name, *scene.views[v].result, options);
-        seconds[v] = Since(start);
-      }
-      return views;
-    };
-    std::vector<double> prep_seconds;
-    const std::vector<registration::RegistrationView> ours = prepare(view_options, prep_seconds);
-    if (views_only) {
-      // A trunk or key region found wrong in one view stands out: the others agree in the world.
-      for (size_t v = 0; v < n; ++v) {
-        const registration::RegistrationView& view = ours[v];
-        if (!view.trunk || !view.key_region) {
-          fmt::print("{} {}: {}\n", scene.label, view.name, view.failure);
-          continue;
-        }
-        const Eigen::Isometry3d& w = scene.poses[v].world_from_camera;
-        const Eigen::Vector3d base = w * view.trunk->base;
-        const Eigen::Vector3d fork = w * view.trunk->branch_point;
-        const Eigen::Vector3d key = w * view.key_region->center;
-        const Eigen::Vector3d axis = w.linear() * registration::TrunkAxis(view);
-        double ground_z = std::numeric_limits<double>::quiet_NaN();
-        if (view.ground) {
-          ground_z = (w * (view.trunk->base -
-                           view.ground->SignedDistance(view.trunk->base) * view.ground->normal))
-                         .z();
-        }
-        fmt::print(
-            "{} {}: base ({:.3f} {:.3f} {:.3f}) fork ({:.3f} {:.3f} {:.3f}) found {} key "
-            "({:.3f} {:.3f} {:.3f}) r {:.2f} axis tilt {:.1f} deg cylinder {} ground z {:.3f} fork "
-            "above ground {:.3f} above base {:.3f} coarse {}\n",
-            scene.label, view.name, base.x(), base.y(), base.z(), fork.x(), fork.y(), fork.z(),
-            view.trunk->fork_found, key.x(), key.y(), key.z(), view.key_region->radius_m,
-            std::acos(std::clamp(axis.z(), -1.0, 1.0)) * 180.0 / std::numbers::pi,
-            view.trunk->cylinder.has_value(), ground_z,
-            registration::HeightOf(view, view.trunk->branch_point, true),
-            registration::HeightOf(view, view.trunk->branch_point, false),
-            view.coarse.points_.size());
-      }
+ private:
+  registration::PairOptions match_options_;
+  std::vector<Outcome> outcomes_;
+};
+
+// A scene's views prepared for registration, and the time each took.
+struct PreparedViews {
+  std::vector<registration::RegistrationView> views;
+  std::vector<double> seconds;
+};
+
+PreparedViews Prepare(const Scene& scene, const registration::RegistrationViewOptions& options) {
+  const size_t n = scene.views.size();
+  PreparedViews prepared;
+  prepared.views.resize(n);
+  prepared.seconds.assign(n, 0.0);
+  for (size_t v = 0; v < n; ++v) {
+    if (!scene.views[v].result) {
+      prepared.views[v].name = scene.views[v].name;
+      prepared.views[v].failure = scene.views[v].failure;
       continue;
     }
-    std::vector<std::pair<size_t, size_t>> pairs;
-    for (size_t s = 0; s < n; ++s) {
-      for (size_t t = s + 1; t < n; ++t) {
-        const std::string name = fmt::format("{}:{}", t, s);
-        if (only_pairs.empty() ||
-            std::find(only_pairs.begin(), only_pairs.end(), name) != only_pairs.end()) {
-          pairs.emplace_back(t, s);
-        }
-      }
-    }
+    const auto start = Clock::now();
+    prepared.views[v] =
+        registration::PrepareView(scene.views[v].name, *scene.views[v].result, options);
+    prepared.seconds[v] = Since(start);
+  }
+  return prepared;
+}
 
-    // Ours, and ours without the priors (the paper's method as written, same code otherwise).
-    registration::PairOptions paper_options;
-    paper_options.up_prior = paper_options.center_prior = paper_options.snap_to_priors = false;
-    paper_options.trunk_axis_weight = paper_options.ground_weight = 0.0;
-    paper_options.retry_other_key_regions = paper_options.retry_with_shifts = false;
-    for (const auto& [s, t] : fine_from_truth ? decltype(pairs){} : pairs) {
-      const registration::PairResult& r =
-          ours_results.emplace_back(registration::RegisterPair(ours[s], ours[t], default_options));
-      record(scene, s, t, "ours", r.target_from_source,
-             prep_seconds[s] + prep_seconds[t] + r.seconds, ours[s], ours[t], r.ok);
-      outcomes.back().checks = &r;
-      if (skip_paper) continue;
-      const registration::PairResult p =
-          registration::RegisterPair(ours[s], ours[t], paper_options);
-      record(scene, s, t, "ours without priors", p.target_from_source,
-             prep_seconds[s] + prep_seconds[t] + p.seconds, ours[s], ours[t], p.ok);
+// Each view's trunk and key region in the world frame (by the truth): a trunk or key region
+// found wrong in one view stands out, the others agree.
+void PrintViews(const Scene& scene, const std::vector<registration::RegistrationView>& views) {
+  for (size_t v = 0; v < views.size(); ++v) {
+    const registration::RegistrationView& view = views[v];
+    if (!view.trunk || !view.key_region) {
+      fmt::print("{} {}: {}\n", scene.label, view.name, view.failure);
+      continue;
     }
-    // Which prior helps and which hurts (an uneven ground is not one plane from every side):
-    // each left out, or (those off by default) put back, in turn.
-    if (ablations) {
-      std::vector<std::pair<std::string, registration::PairOptions>> variants;
-      auto add = [&](const std::string& name, auto change) {
-        registration::PairOptions o = default_options;
-        change(o);
-        variants.emplace_back("ours, " + name, o);
-      };
-      add("ground as up", [](registration::PairOptions& o) { o.ground_as_up = true; });
-      add("ground constraint", [](registration::PairOptions& o) { o.ground_weight = 0.5; });
-      add("trunk constraint", [](registration::PairOptions& o) { o.trunk_axis_weight = 1.0; });
-      add("no snap", [](registration::PairOptions& o) { o.snap_to_priors = false; });
-      add("no turned alternative", [](registration::PairOptions& o) { o.turned_refinements = 0; });
-      for (const auto& [s, t] : pairs) {
-        const double prep = prep_seconds[s] + prep_seconds[t];
-        for (const auto& [name, options] : variants) {
-          const registration::PairResult r = registration::RegisterPair(ours[s], ours[t], options);
-          record(scene, s, t, name, r.target_from_source, prep + r.seconds, ours[s], ours[t], r.ok);
-        }
-      }
+    const Eigen::Isometry3d& w = scene.poses[v].world_from_camera;
+    const Eigen::Vector3d base = w * view.trunk->base;
+    const Eigen::Vector3d fork = w * view.trunk->branch_point;
+    const Eigen::Vector3d key = w * view.key_region->center;
+    const Eigen::Vector3d axis = w.linear() * registration::TrunkAxis(view);
+    double ground_z = std::numeric_limits<double>::quiet_NaN();
+    if (view.ground) {
+      ground_z = (w * (view.trunk->base -
+                       view.ground->SignedDistance(view.trunk->base) * view.ground->normal))
+                     .z();
     }
+    fmt::print(
+        "{} {}: base ({:.3f} {:.3f} {:.3f}) fork ({:.3f} {:.3f} {:.3f}) found {} key "
+        "({:.3f} {:.3f} {:.3f}) r {:.2f} axis tilt {:.1f} deg cylinder {} ground z {:.3f} fork "
+        "above ground {:.3f} above base {:.3f} coarse {}\n",
+        scene.label, view.name, base.x(), base.y(), base.z(), fork.x(), fork.y(), fork.z(),
+        view.trunk->fork_found, key.x(), key.y(), key.z(), view.key_region->radius_m,
+        std::acos(std::clamp(axis.z(), -1.0, 1.0)) * 180.0 / std::numbers::pi,
+        view.trunk->cylinder.has_value(), ground_z,
+        registration::HeightOf(view, view.trunk->branch_point, true),
+        registration::HeightOf(view, view.trunk->branch_point, false), view.coarse.points_.size());
+  }
+}
 
-    // The fine stage isolated: ours' and the baselines' ICP from the same starts (the truth,
-    // and ours' coarse result), so a difference at the tree is the fine stage's own.
-    if (fine_from_truth) {
-      // Ours' fine stage and variants of it from the true pose (docs/registration.md, "The tilt
-      // that remains"): what is left of the error there is the fine stage's own bias.
-      registration::RegistrationViewOptions normal_lines_options = view_options;
-      normal_lines_options.projection.silhouette = false;
-      std::vector<double> unused;
-      const std::vector<registration::RegistrationView> normal_lines =
-          prepare(normal_lines_options, unused);
-      struct Variant {
-        std::string name;
-        registration::PairOptions options;
-        const std::vector<registration::RegistrationView>* views;
-      };
-      std::vector<Variant> fine_variants = {{"", default_options, &ours}};
-      auto add = [&](const std::string& name, bool silhouette, auto change) {
-        registration::PairOptions o = default_options;
-        change(o);
-        fine_variants.push_back({", " + name, o, silhouette ? &ours : &normal_lines});
-      };
-      add("one way", true, [](registration::PairOptions& o) { o.symmetric_fine = false; });
-      add("symmetric objective", true, [](registration::PairOptions& o) {
-        o.icp.objective = registration::IcpObjective::kSymmetric;
-      });
-      add("medial shift only", true,
-          [](registration::PairOptions& o) { o.medial.rotation = false; });
-      add("normal-line axis points", false, [](registration::PairOptions&) {});
-      add("before (normal-line axis points, medial shift only)", false,
-          [](registration::PairOptions& o) { o.medial.rotation = false; });
-      add("before, one way", false, [](registration::PairOptions& o) {
-        o.medial.rotation = false;
-        o.symmetric_fine = false;
-      });
-      add("before, symmetric objective", false, [](registration::PairOptions& o) {
-        o.medial.rotation = false;
-        o.icp.objective = registration::IcpObjective::kSymmetric;
-      });
-      for (const auto& [s, t] : pairs) {
-        if (!ours[s].CanRegister() || !ours[t].CanRegister()) continue;
-        const Eigen::Isometry3d truth =
-            scene.poses[t].world_from_camera.inverse() * scene.poses[s].world_from_camera;
-        for (const Variant& v : fine_variants) {
-          const registration::RegistrationView& vs = (*v.views)[s];
-          const registration::RegistrationView& vt = (*v.views)[t];
-          const auto begin = Clock::now();
-          registration::FineResult fine = registration::RefinePair(vs, vt, truth, v.options);
-          if (v.options.symmetric_fine)
-            fine = registration::AverageWithReverse(vs, vt, fine, v.options);
-          record(scene, s, t, "ours' fine" + v.name + " from truth", fine.icp.target_from_source,
-                 Since(begin), ours[s], ours[t], true);
-        }
-      }
-    }
-    if (fine_study) {
-      registration::PairOptions coarse_only = default_options;
-      coarse_only.run_icp = false;
-      std::vector<std::pair<std::string, registration::PairOptions>> fine_variants = {
-          {"", default_options}, {" without priors", paper_options}};
-      auto add_variant = [&](const std::string& name, auto change) {
-        registration::PairOptions o = paper_options;
-        change(o);
-        fine_variants.emplace_back(" without priors, " + name, o);
-      };
-      auto add_ours = [&](const std::string& name, auto change) {
-        registration::PairOptions o = default_options;
-        change(o);
-        fine_variants.emplace_back(", " + name, o);
-      };
-      add_ours("one way", [](registration::PairOptions& o) { o.symmetric_fine = false; });
-      add_variant("45-deg normal gate",
-                  [](registration::PairOptions& o) { o.icp.max_normal_angle_deg = 45; });
-      add_variant("no medial shift",
-                  [](registration::PairOptions& o) { o.medial_distance_factors.clear(); });
-      add_variant("trunk constraint",
-                  [](registration::PairOptions& o) { o.trunk_axis_weight = 1.0; });
-      add_variant("Open3D's settings, no medial shift", [](registration::PairOptions& o) {
-        o.icp.huber_share = 0;
-        o.icp.max_source_points = 0;
-        o.icp.iterations_per_stage = 30;
-        o.medial_distance_factors.clear();
-      });
-      for (const auto& [s, t] : pairs) {
-        if (!ours[s].CanRegister() || !ours[t].CanRegister()) continue;
-        const Eigen::Isometry3d truth =
-            scene.poses[t].world_from_camera.inverse() * scene.poses[s].world_from_camera;
-        const registration::PairResult coarse =
-            registration::RegisterPair(ours[s], ours[t], coarse_only);
-        if (!coarse.coarse.found) continue;
-        registration::BaselineOptions o3d;
-        o3d.spacing_m = std::max(ours[s].spacing_m, ours[t].spacing_m);
-        for (const auto& [start_name, start] :
-             {std::pair{"truth", truth}, std::pair{"ours' coarse", coarse.target_from_source}}) {
-          const std::string from = std::string(" from ") + start_name;
-          record(scene, s, t, std::string("start") + from, start, 0.0, ours[s], ours[t], true);
-          auto begin = Clock::now();
-          for (const auto& [variant, variant_options] : fine_variants) {
-            begin = Clock::now();
-            registration::FineResult fine =
-                registration::RefinePair(ours[s], ours[t], start, variant_options);
-            if (variant_options.symmetric_fine) {
-              fine = registration::AverageWithReverse(ours[s], ours[t], fine, variant_options);
-            }
-            record(scene, s, t, "ours' fine" + variant + from, fine.icp.target_from_source,
-                   Since(begin), ours[s], ours[t], true);
-          }
-          begin = Clock::now();
-          const Eigen::Isometry3d open3d =
-              registration::Open3dIcp(*ours[s].cloud, *ours[t].cloud, start, o3d);
-          record(scene, s, t, "Open3D ICP" + from, open3d, Since(begin), ours[s], ours[t], true);
-        }
-      }
-    }
-
-    // Table I: the four coarse inputs to the paper's SAC-IA (no priors), coarse only.
-    if (!skip_table1 && static_cast<int>(k) < table1_scenes) {
-      registration::PairOptions coarse_only = paper_options;
-      coarse_only.run_icp = false;
-      for (registration::CoarseInput input : table1_inputs) {
-        registration::RegistrationViewOptions options;
-        options.coarse_input = input;
-        std::vector<double> seconds;
-        const auto views = prepare(options, seconds);
-        for (const auto& [s, t] : pairs) {
-          const registration::PairResult r =
-              registration::RegisterPair(views[s], views[t], coarse_only);
-          record(scene, s, t, std::string("table1 ") + ToString(input), r.target_from_source,
-                 seconds[s] + seconds[t] + r.seconds, ours[s], ours[t], r.ok);
-        }
-      }
-    }
-
-    // Table II's baselines and Open3D's.
-    if (!skip_baselines && static_cast<int>(k) < baseline_scenes) {
-      for (const auto& [s, t] : pairs) {
-        if (!ours[s].cloud || !ours[t].cloud) continue;
-        registration::BaselineOptions options;
-        options.spacing_m = std::max(ours[s].spacing_m, ours[t].spacing_m);
-        const auto& cs = *ours[s].cloud;
-        const auto& ct = *ours[t].cloud;
-        const registration::BaselineResult pca = registration::PcaIcp(cs, ct, options);
-        record(scene, s, t, "PCA-ICP", pca.target_from_source, pca.seconds, ours[s], ours[t], true);
-        const registration::BaselineResult fpcs = bench::Fpcs4PcsIcp(cs, ct, options);
-        record(scene, s, t, "F-4PCS-ICP (PCL)", fpcs.target_from_source, fpcs.seconds, ours[s],
-               ours[t], true);
-        const registration::BaselineResult o3d = registration::Open3dFpfhRansacIcp(cs, ct, options);
-        record(scene, s, t, "Open3D FPFH-RANSAC+ICP", o3d.target_from_source, o3d.seconds, ours[s],
-               ours[t], true);
+// Every pair of a scene's views (source after target), or those --pairs names.
+std::vector<std::pair<size_t, size_t>> ScenePairs(size_t n,
+                                                  const std::vector<std::string>& only_pairs) {
+  std::vector<std::pair<size_t, size_t>> pairs;
+  for (size_t s = 0; s < n; ++s) {
+    for (size_t t = s + 1; t < n; ++t) {
+      const std::string name = fmt::format("{}:{}", t, s);
+      if (only_pairs.empty() ||
+          std::find(only_pairs.begin(), only_pairs.end(), name) != only_pairs.end()) {
+        pairs.emplace_back(t, s);
       }
     }
   }
+  return pairs;
+}
 
-  // Tables.
+// One scene's runs: what every method needs.
+struct SceneRun {
+  const Scene& scene;
+  const PreparedViews& ours;  // the views as ours prepares them
+  std::vector<std::pair<size_t, size_t>> pairs;
+  registration::PairOptions options;        // ours
+  registration::PairOptions paper_options;  // ours without priors: the paper's method as written
+  registration::RegistrationViewOptions view_options;
+  Recorder& recorder;
+
+  Eigen::Isometry3d Truth(size_t s, size_t t) const {
+    return scene.poses[t].world_from_camera.inverse() * scene.poses[s].world_from_camera;
+  }
+  double PrepSeconds(size_t s, size_t t) const { return ours.seconds[s] + ours.seconds[t]; }
+};
+
+registration::PairOptions WithoutPriors(registration::PairOptions o) {
+  o.up_prior = o.center_prior = o.snap_to_priors = false;
+  o.trunk_axis_weight = o.ground_weight = 0.0;
+  o.retry_other_key_regions = o.retry_with_shifts = false;
+  return o;
+}
+
+// Ours on every pair, and ours without the priors (same code otherwise).
+void RunOurs(const SceneRun& run, bool skip_paper,
+             std::deque<registration::PairResult>& ours_results) {
+  const auto& v = run.ours.views;
+  for (const auto& [s, t] : run.pairs) {
+    const registration::PairResult& r =
+        ours_results.emplace_back(registration::RegisterPair(v[s], v[t], run.options));
+    run.recorder.Record(run.scene, s, t, "ours", r.target_from_source,
+                        run.PrepSeconds(s, t) + r.seconds, v[s], v[t], r.ok());
+    run.recorder.AttachChecks(&r);
+    if (skip_paper) continue;
+    const registration::PairResult p = registration::RegisterPair(v[s], v[t], run.paper_options);
+    run.recorder.Record(run.scene, s, t, "ours without priors", p.target_from_source,
+                        run.PrepSeconds(s, t) + p.seconds, v[s], v[t], p.ok());
+  }
+}
+
+// Which prior helps and which hurts (an uneven ground is not one plane from every side): each
+// left out, or (those off by default) put back, in turn.
+void RunAblations(const SceneRun& run) {
+  std::vector<std::pair<std::string, registration::PairOptions>> variants;
+  auto add = [&](const std::string& name, auto change) {
+    registration::PairOptions o = run.options;
+    change(o);
+    variants.emplace_back("ours, " + name, o);
+  };
+  add("ground as up", [](registration::PairOptions& o) { o.ground_as_up = true; });
+  add("ground constraint", [](registration::PairOptions& o) { o.ground_weight = 0.5; });
+  add("trunk constraint", [](registration::PairOptions& o) { o.trunk_axis_weight = 1.0; });
+  add("no snap", [](registration::PairOptions& o) { o.snap_to_priors = false; });
+  add("no turned alternative", [](registration::PairOptions& o) { o.turned_refinements = 0; });
+  const auto& v = run.ours.views;
+  for (const auto& [s, t] : run.pairs) {
+    for (const auto& [name, options] : variants) {
+      const registration::PairResult r = registration::RegisterPair(v[s], v[t], options);
+      run.recorder.Record(run.scene, s, t, name, r.target_from_source,
+                          run.PrepSeconds(s, t) + r.seconds, v[s], v[t], r.ok());
+    }
+  }
+}
+
+// Ours' fine stage and variants of it from the true pose: what is left of the error there is
+// the fine stage's own bias.
+void RunFineFromTruth(const SceneRun& run) {
+  registration::RegistrationViewOptions normal_lines_options = run.view_options;
+  normal_lines_options.projection.silhouette = false;
+  const PreparedViews normal_lines = Prepare(run.scene, normal_lines_options);
+  struct Variant {
+    std::string name;
+    registration::PairOptions options;
+    const std::vector<registration::RegistrationView>* views;
+  };
+  std::vector<Variant> variants = {{"", run.options, &run.ours.views}};
+  auto add = [&](const std::string& name, bool silhouette, auto change) {
+    registration::PairOptions o = run.options;
+    change(o);
+    variants.push_back({", " + name, o, silhouette ? &run.ours.views : &normal_lines.views});
+  };
+  add("one way", true, [](registration::PairOptions& o) { o.symmetric_fine = false; });
+  add("symmetric objective", true, [](registration::PairOptions& o) {
+    o.icp.objective = registration::IcpObjective::kSymmetric;
+  });
+  add("medial shift only", true, [](registration::PairOptions& o) { o.medial.rotation = false; });
+  add("normal-line axis points", false, [](registration::PairOptions&) {});
+  add("normal-line axis points, medial shift only", false,
+      [](registration::PairOptions& o) { o.medial.rotation = false; });
+  add("normal-line axis points, medial shift only, one way", false,
+      [](registration::PairOptions& o) {
+        o.medial.rotation = false;
+        o.symmetric_fine = false;
+      });
+  add("normal-line axis points, medial shift only, symmetric objective", false,
+      [](registration::PairOptions& o) {
+        o.medial.rotation = false;
+        o.icp.objective = registration::IcpObjective::kSymmetric;
+      });
+  const auto& ours = run.ours.views;
+  for (const auto& [s, t] : run.pairs) {
+    if (!ours[s].CanRegister() || !ours[t].CanRegister()) continue;
+    for (const Variant& variant : variants) {
+      const registration::RegistrationView& vs = (*variant.views)[s];
+      const registration::RegistrationView& vt = (*variant.views)[t];
+      const auto begin = Clock::now();
+      registration::FineResult fine =
+          registration::RefinePair(vs, vt, run.Truth(s, t), variant.options);
+      if (variant.options.symmetric_fine) {
+        fine = registration::AverageWithReverse(vs, vt, fine, variant.options);
+      }
+      run.recorder.Record(run.scene, s, t, "ours' fine" + variant.name + " from truth",
+                          fine.icp.target_from_source, Since(begin), ours[s], ours[t], true);
+    }
+  }
+}
+
+// The fine stage isolated: ours' and the baselines' ICP from the same starts (the truth, and
+// ours' coarse result), so a difference at the tree is the fine stage's own.
+void RunFineStudy(const SceneRun& run) {
+  registration::PairOptions coarse_only = run.options;
+  coarse_only.run_icp = false;
+  std::vector<std::pair<std::string, registration::PairOptions>> variants = {
+      {"", run.options}, {" without priors", run.paper_options}};
+  auto add_variant = [&](const std::string& name, auto change) {
+    registration::PairOptions o = run.paper_options;
+    change(o);
+    variants.emplace_back(" without priors, " + name, o);
+  };
+  auto add_ours = [&](const std::string& name, auto change) {
+    registration::PairOptions o = run.options;
+    change(o);
+    variants.emplace_back(", " + name, o);
+  };
+  add_ours("one way", [](registration::PairOptions& o) { o.symmetric_fine = false; });
+  add_variant("45-deg normal gate",
+              [](registration::PairOptions& o) { o.icp.max_normal_angle_deg = 45; });
+  add_variant("no medial shift",
+              [](registration::PairOptions& o) { o.medial_distance_factors.clear(); });
+  add_variant("trunk constraint", [](registration::PairOptions& o) { o.trunk_axis_weight = 1.0; });
+  add_variant("Open3D's settings, no medial shift", [](registration::PairOptions& o) {
+    o.icp.huber_share = 0;
+    o.icp.max_source_points = 0;
+    o.icp.iterations_per_stage = 30;
+    o.medial_distance_factors.clear();
+  });
+  const auto& ours = run.ours.views;
+  for (const auto& [s, t] : run.pairs) {
+    if (!ours[s].CanRegister() || !ours[t].CanRegister()) continue;
+    const registration::PairResult coarse =
+        registration::RegisterPair(ours[s], ours[t], coarse_only);
+    if (!coarse.coarse.found) continue;
+    registration::BaselineOptions o3d;
+    o3d.spacing_m = std::max(ours[s].spacing_m, ours[t].spacing_m);
+    for (const auto& [start_name, start] : {std::pair{"truth", run.Truth(s, t)},
+                                            std::pair{"ours' coarse", coarse.target_from_source}}) {
+      const std::string from = std::string(" from ") + start_name;
+      run.recorder.Record(run.scene, s, t, std::string("start") + from, start, 0.0, ours[s],
+                          ours[t], true);
+      for (const auto& [variant, variant_options] : variants) {
+        const auto begin = Clock::now();
+        registration::FineResult fine =
+            registration::RefinePair(ours[s], ours[t], start, variant_options);
+        if (variant_options.symmetric_fine) {
+          fine = registration::AverageWithReverse(ours[s], ours[t], fine, variant_options);
+        }
+        run.recorder.Record(run.scene, s, t, "ours' fine" + variant + from,
+                            fine.icp.target_from_source, Since(begin), ours[s], ours[t], true);
+      }
+      const auto begin = Clock::now();
+      const Eigen::Isometry3d open3d =
+          registration::Open3dIcp(*ours[s].cloud, *ours[t].cloud, start, o3d);
+      run.recorder.Record(run.scene, s, t, "Open3D ICP" + from, open3d, Since(begin), ours[s],
+                          ours[t], true);
+    }
+  }
+}
+
+// Table I: the four coarse inputs to the paper's SAC-IA (no priors), coarse only.
+void RunTable1(const SceneRun& run) {
+  registration::PairOptions coarse_only = run.paper_options;
+  coarse_only.run_icp = false;
+  for (registration::CoarseInput input :
+       {registration::CoarseInput::kEntireTree, registration::CoarseInput::kKeyRegion,
+        registration::CoarseInput::kTreeSkeleton, registration::CoarseInput::kKeyRegionSkeleton}) {
+    registration::RegistrationViewOptions options;
+    options.coarse_input = input;
+    const PreparedViews prepared = Prepare(run.scene, options);
+    const auto& v = prepared.views;
+    for (const auto& [s, t] : run.pairs) {
+      const registration::PairResult r = registration::RegisterPair(v[s], v[t], coarse_only);
+      run.recorder.Record(run.scene, s, t, std::string("table1 ") + ToString(input),
+                          r.target_from_source,
+                          prepared.seconds[s] + prepared.seconds[t] + r.seconds, run.ours.views[s],
+                          run.ours.views[t], r.ok());
+    }
+  }
+}
+
+// Table II's baselines and Open3D's.
+void RunBaselines(const SceneRun& run) {
+  const auto& ours = run.ours.views;
+  for (const auto& [s, t] : run.pairs) {
+    if (!ours[s].cloud || !ours[t].cloud) continue;
+    registration::BaselineOptions options;
+    options.spacing_m = std::max(ours[s].spacing_m, ours[t].spacing_m);
+    const auto& cs = *ours[s].cloud;
+    const auto& ct = *ours[t].cloud;
+    const registration::BaselineResult pca = registration::PcaIcp(cs, ct, options);
+    run.recorder.Record(run.scene, s, t, "PCA-ICP", pca.target_from_source, pca.seconds, ours[s],
+                        ours[t], true);
+    const registration::BaselineResult fpcs = bench::Fpcs4PcsIcp(cs, ct, options);
+    run.recorder.Record(run.scene, s, t, "F-4PCS-ICP (PCL)", fpcs.target_from_source, fpcs.seconds,
+                        ours[s], ours[t], true);
+    const registration::BaselineResult o3d = registration::Open3dFpfhRansacIcp(cs, ct, options);
+    run.recorder.Record(run.scene, s, t, "Open3D FPFH-RANSAC+ICP", o3d.target_from_source,
+                        o3d.seconds, ours[s], ours[t], true);
+  }
+}
+
+// The tables: one row per method and angle, one per method over all angles, then how honest
+// ours' own checks are.
+std::string TablesMarkdown(const std::vector<Outcome>& outcomes, const std::vector<Scene>& scenes,
+                           const std::string& load_start) {
   std::map<std::string, std::map<int, std::vector<Outcome>>> by_method;
   for (const Outcome& o : outcomes) by_method[o.method][o.gap_deg].push_back(o);
   std::string md =
@@ -590,7 +635,6 @@ int main(int argc, char** argv) {
         "| **{}** | all | {} | {:.0f} | {:.2f} | {:.1f}% | {:.2f} | {:.1f} | {:.0f}% |\n", method,
         s.pairs, s.time_ms, s.rmse_mm, s.match, s.rotation_deg, s.tree_mm, s.right);
   }
-  // Ours: how honest its own checks are.
   if (by_method.count("ours")) {
     int accepted = 0, accepted_wrong = 0, rejected_right = 0, total = 0;
     for (const auto& [gap, list] : by_method["ours"]) {
@@ -606,51 +650,106 @@ int main(int argc, char** argv) {
         "refused though right.\n",
         accepted, total, accepted_wrong, rejected_right);
   }
-  fmt::print("{}", md);
-  if (!markdown_path.empty()) std::ofstream(markdown_path) << md;
-  if (!json_path.empty()) {
-    nlohmann::ordered_json doc = nlohmann::ordered_json::array();
-    for (const Outcome& o : outcomes) {
-      doc.push_back(
-          {{"method", o.method},
-           {"scene", o.scene},
-           {"source", o.source},
-           {"target", o.target},
-           {"angle_deg", o.angle_deg},
-           {"gap_deg", o.gap_deg},
-           {"time_ms", 1e3 * o.seconds},
-           {"rmse_mm", 1e3 * o.rmse_m},
-           {"match_rate", o.match_rate},
-           {"rotation_error_deg", o.error.rotation_deg},
-           {"tree_rms_mm", 1e3 * o.error.tree_rms_m},
-           {"centroid_error_mm", 1e3 * o.error.centroid_m},
-           {"centroid_shift_target_mm",
-            {1e3 * o.centroid_shift.x(), 1e3 * o.centroid_shift.y(), 1e3 * o.centroid_shift.z()}},
-           {"yaw_error_deg", o.yaw_error_deg},
-           {"tilt_error_deg", o.tilt_error_deg},
-           {"rotation_error_target_deg",
-            {o.rotation_error_target.x(), o.rotation_error_target.y(),
-             o.rotation_error_target.z()}},
-           {"right", o.error.Within()},
-           {"accepted", o.accepted}});
-      if (o.checks) {
-        doc.back()["status"] = o.checks->status;
-        doc.back()["up_disagreement_deg"] = o.checks->up_disagreement_deg;
-        doc.back()["ground_offset_mm"] = 1e3 * o.checks->ground_offset_m;
-        doc.back()["trunk_offset_mm"] = 1e3 * o.checks->trunk_offset_m;
-        doc.back()["coarse_overlap"] = o.checks->coarse_overlap;
-        doc.back()["fitness"] = o.checks->fine.fitness;
-        doc.back()["turned_deg"] = o.checks->turned_deg;
-        doc.back()["own_key_regions"] = o.checks->own_key_regions;
-        doc.back()["retried_without_priors"] = o.checks->retried_without_priors;
-        doc.back()["attempt"] = o.checks->attempt;
-        doc.back()["view_overlap"] = o.checks->view_overlap;
-        doc.back()["shifted_mm"] = 1e3 * o.checks->shifted_m;
-        doc.back()["medial_shift_mm"] = 1e3 * o.checks->medial_shift_m;
-        doc.back()["reverse_gap_mm"] = 1e3 * o.checks->reverse_gap_m;
-      }
+  return md;
+}
+
+// Every outcome, with what ours' checks measured.
+nlohmann::ordered_json OutcomesJson(const std::vector<Outcome>& outcomes) {
+  nlohmann::ordered_json doc = nlohmann::ordered_json::array();
+  for (const Outcome& o : outcomes) {
+    doc.push_back(
+        {{"method", o.method},
+         {"scene", o.scene},
+         {"source", o.source},
+         {"target", o.target},
+         {"angle_deg", o.angle_deg},
+         {"gap_deg", o.gap_deg},
+         {"time_ms", 1e3 * o.seconds},
+         {"rmse_mm", 1e3 * o.rmse_m},
+         {"match_rate", o.match_rate},
+         {"rotation_error_deg", o.error.rotation_deg},
+         {"tree_rms_mm", 1e3 * o.error.tree_rms_m},
+         {"centroid_error_mm", 1e3 * o.error.centroid_m},
+         {"centroid_shift_target_mm",
+          {1e3 * o.centroid_shift.x(), 1e3 * o.centroid_shift.y(), 1e3 * o.centroid_shift.z()}},
+         {"yaw_error_deg", o.yaw_error_deg},
+         {"tilt_error_deg", o.tilt_error_deg},
+         {"rotation_error_target_deg",
+          {o.rotation_error_target.x(), o.rotation_error_target.y(), o.rotation_error_target.z()}},
+         {"right", o.error.Within()},
+         {"accepted", o.accepted}});
+    if (!o.checks) continue;
+    nlohmann::ordered_json& j = doc.back();
+    j["status"] = o.checks->status;
+    j["up_disagreement_deg"] = o.checks->up_disagreement_deg;
+    j["ground_offset_mm"] = 1e3 * o.checks->ground_offset_m;
+    j["trunk_offset_mm"] = 1e3 * o.checks->trunk_offset_m;
+    j["coarse_overlap"] = o.checks->coarse_overlap;
+    j["fitness"] = o.checks->fine.fitness;
+    j["turned_deg"] = o.checks->turned_deg;
+    j["own_key_regions"] = o.checks->own_key_regions;
+    j["retried_without_priors"] = o.checks->retried_without_priors;
+    j["attempt"] = ToString(o.checks->attempt);
+    j["view_overlap"] = o.checks->view_overlap;
+    j["shifted_mm"] = 1e3 * o.checks->shifted_m;
+    j["medial_shift_mm"] = 1e3 * o.checks->medial_shift_m;
+    j["reverse_gap_mm"] = 1e3 * o.checks->reverse_gap_m;
+  }
+  return doc;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Registration side by side: paper Tables I and II, ours and Open3D, against truth"};
+  BenchArgs args;
+  AddOptions(app, args);
+  CLI11_PARSE(app, argc, argv);
+  open3d::utility::SetVerbosityLevel(open3d::utility::VerbosityLevel::Error);
+  const std::string load_start = LoadAverage();
+  const std::vector<Scene> scenes = MakeScenes(args);
+  if (scenes.empty()) {
+    fmt::print(stderr, "no scenes: give --synth-seeds, --captures or --seeds\n");
+    return 2;
+  }
+
+  registration::PairOptions options;
+  options.screen_below_overlap = args.screen_below_overlap;
+  registration::RegistrationViewOptions view_options;
+  if (args.old_medial) {
+    options.medial.rotation = false;
+    view_options.projection.silhouette = false;
+  }
+  Recorder recorder(options);
+  std::deque<registration::PairResult> ours_results;  // what ours' checks measured, for the JSON
+  for (size_t k = 0; k < scenes.size(); ++k) {
+    const Scene& scene = scenes[k];
+    fmt::print(stderr, "{}: {} views\n", scene.label, scene.views.size());
+    const PreparedViews ours = Prepare(scene, view_options);
+    if (args.views_only) {
+      PrintViews(scene, ours.views);
+      continue;
     }
-    std::ofstream(json_path) << doc.dump(1) << "\n";
+    const SceneRun run{scene,
+                       ours,
+                       ScenePairs(scene.views.size(), args.only_pairs),
+                       options,
+                       WithoutPriors(kDefaultPairOptions),
+                       view_options,
+                       recorder};
+    if (!args.fine_from_truth) RunOurs(run, args.skip_paper, ours_results);
+    if (args.ablations) RunAblations(run);
+    if (args.fine_from_truth) RunFineFromTruth(run);
+    if (args.fine_study) RunFineStudy(run);
+    if (!args.skip_table1 && static_cast<int>(k) < args.table1_scenes) RunTable1(run);
+    if (!args.skip_baselines && static_cast<int>(k) < args.baseline_scenes) RunBaselines(run);
+  }
+
+  const std::string md = TablesMarkdown(recorder.outcomes(), scenes, load_start);
+  fmt::print("{}", md);
+  if (!args.markdown_path.empty()) std::ofstream(args.markdown_path) << md;
+  if (!args.json_path.empty()) {
+    std::ofstream(args.json_path) << OutcomesJson(recorder.outcomes()).dump(1) << "\n";
   }
   return 0;
 }

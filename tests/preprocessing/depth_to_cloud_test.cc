@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "preprocessing/option_fixtures.h"
 #include "simtree/core/error.h"
 
 namespace simtree::preprocessing {
@@ -62,6 +63,15 @@ TEST(DepthToCloud, ImagesThatDoNotMatchTheIntrinsicsAreRefused) {
   image = Flat(9, 7, 2000);
   image.intrinsics.fx = 0;
   EXPECT_THROW(DepthToCloud(image, {}, "view_00"), InputError);
+}
+
+TEST(DepthToCloud, NonsenseOptionsAreRefused) {
+  using Options = DepthToCloudOptions;
+  EXPECT_EQ(test::RefusedField(Options{}), "");
+  EXPECT_EQ(test::RefusedField(Options{.stride = 0}), "stride");
+  EXPECT_EQ(test::RefusedField(Options{.min_depth_m = 7.0}), "min_depth_m");  // beyond the max
+  EXPECT_EQ(test::RefusedField(Options{.flying_jump_share = -0.1}), "flying_jump_share");
+  EXPECT_THROW(DepthToCloud(Flat(9, 7, 2000), Options{.stride = 0}), InputError);
 }
 
 }  // namespace

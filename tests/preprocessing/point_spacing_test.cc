@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "preprocessing/option_fixtures.h"
+
 namespace simtree::preprocessing {
 namespace {
 
@@ -23,6 +25,13 @@ TEST(PointSpacing, DuplicatesAndTinyCloudsDoNotBreakIt) {
     cloud.points_.emplace_back(0.01 * i, 0, 0);  // every point twice
   }
   EXPECT_NEAR(MedianPointSpacing(cloud), 0.01, 1e-9);
+}
+
+TEST(PointSpacing, NonsenseOptionsAreRefused) {
+  EXPECT_EQ(test::RefusedField(SpacingOptions{}), "");
+  EXPECT_EQ(test::RefusedField(SpacingOptions{.max_samples = 0}), "max_samples");
+  // The nearest neighbour of a point is itself: one neighbour measures nothing.
+  EXPECT_EQ(test::RefusedField(SpacingOptions{.neighbours = 1}), "neighbours");
 }
 
 }  // namespace

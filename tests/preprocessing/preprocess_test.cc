@@ -95,5 +95,41 @@ TEST(CaptureViews, AFolderOfNothingIsAnError) {
   EXPECT_THROW(LoadViews(dir), InputError);
 }
 
+TEST(CaptureViews, ThePullStreamsFirstFrameIsPreprocessedLikeAView) {
+  const Capture capture = OpenCapture(QuickCapture());
+  const PreprocessedView pull = PreprocessPullFrame(capture);
+  EXPECT_EQ(pull.name, "pull_0");
+  ASSERT_TRUE(pull.result) << pull.failure;
+  EXPECT_GT(pull.result->cloud.points_.size(), 1000u);
+  EXPECT_THROW(PreprocessPullFrame(capture, capture.pull->frames.size()), InputError);
+  Capture without = capture;
+  without.pull.reset();
+  EXPECT_THROW(PreprocessPullFrame(without), InputError);
+}
+
+TEST(CaptureViews, NonsenseOptionsAreRefusedBeforeTheInputIsRead) {
+  PreprocessOptions options;
+  options.outlier_std_ratio = 0.0;
+  try {
+    LoadViews(test::TempDir() / "missing", options);
+    FAIL() << "a zero outlier ratio accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "outlier_std_ratio");
+  }
+}
+
+TEST(CaptureViews, AMissingFieldOfPreprocessJsonIsNamed) {
+  const fs::path dir = test::TempDir();
+  test::WriteText(dir / "preprocess.json",
+                  "{\"format\": \"simtree.preprocess\", \"version\": 1, \"views\": "
+                  "[{\"cloud\": null}]}");
+  try {
+    LoadViews(dir);
+    FAIL() << "a view without its fields accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "views[0].name");
+  }
+}
+
 }  // namespace
 }  // namespace simtree::preprocessing

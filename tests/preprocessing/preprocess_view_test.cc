@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "preprocessing/option_fixtures.h"
 #include "preprocessing_fixtures.h"
 #include "simtree/core/error.h"
 
@@ -86,6 +87,27 @@ TEST(Preprocess, BadInputsAreClearErrors) {
   open3d::geometry::PointCloud only_ground;
   test::AddGround(only_ground, 0.02, 0.003, 5);
   EXPECT_THROW(PreprocessView(only_ground, {}, "view_01"), InputError);
+}
+
+TEST(Preprocess, NonsenseOptionsAreRefusedBeforeAnyWork) {
+  using Options = PreprocessOptions;
+  auto refused = [](auto change) { return test::RefusedFieldAfter<Options>(change); };
+  EXPECT_EQ(test::RefusedField(Options{}), "");
+  EXPECT_EQ(refused([](Options& o) { o.voxel_size_m = -0.01; }), "voxel_size_m");
+  EXPECT_EQ(refused([](Options& o) { o.min_ground_share = 1.5; }), "min_ground_share");
+  EXPECT_EQ(
+      refused([](Options& o) { o.max_ground_tilt_deg = std::numeric_limits<double>::quiet_NaN(); }),
+      "max_ground_tilt_deg");
+  EXPECT_EQ(refused([](Options& o) { o.ground_sample_points = 0; }), "ground_sample_points");
+  // The options are named, not the (empty) cloud.
+  Options options;
+  options.cluster_link_factor = 0;
+  try {
+    PreprocessView(open3d::geometry::PointCloud(), options, "view_00");
+    FAIL() << "a zero cluster link accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source(), "options");
+  }
 }
 
 }  // namespace

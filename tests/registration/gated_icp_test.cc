@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "preprocessing/option_fixtures.h"
+
 namespace simtree::registration {
 namespace {
 
@@ -253,6 +255,17 @@ TEST(Overlap, CountsGatedMatches) {
                    0.0);
   EXPECT_DOUBLE_EQ(
       MeasureOverlap(flipped, a, tree, Eigen::Isometry3d::Identity(), 0.005, 180).share, 1.0);
+}
+
+TEST(GatedIcp, NonsenseOptionsAreRefused) {
+  using test::RefusedField;
+  EXPECT_EQ(RefusedField(GatedIcpOptions{}), "");
+  EXPECT_EQ(RefusedField(GatedIcpOptions{.max_distances_m = {}}), "max_distances_m");
+  EXPECT_EQ(RefusedField(GatedIcpOptions{.max_distances_m = {0.06, 0.0}}), "max_distances_m[1]");
+  EXPECT_EQ(RefusedField(GatedIcpOptions{.max_normal_angle_deg = 200}), "max_normal_angle_deg");
+  EXPECT_EQ(RefusedField(GatedIcpOptions{.min_planarity = -0.1}), "min_planarity");
+  EXPECT_EQ(RefusedField(MedialShiftOptions{}), "");
+  EXPECT_EQ(RefusedField(MedialShiftOptions{.min_matches = 2}), "min_matches");
 }
 
 }  // namespace

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "preprocessing/option_fixtures.h"
+
 namespace simtree::registration {
 namespace {
 
@@ -67,6 +69,16 @@ TEST(L1MedialSkeleton, IsDeterministicAndHandlesEmptyInput) {
   for (size_t i = 0; i < a.points.size(); ++i) EXPECT_EQ(a.points[i], b.points[i]);
   EXPECT_TRUE(L1MedialSkeleton({}).points.empty());
   EXPECT_EQ(L1MedialSkeleton({Eigen::Vector3d(1, 2, 3)}).points.size(), 1u);
+}
+
+TEST(L1MedialSkeleton, NonsenseOptionsAreRefused) {
+  using test::RefusedField;
+  EXPECT_EQ(RefusedField(SkeletonOptions{}), "");
+  EXPECT_EQ(RefusedField(SkeletonOptions{.repulsion_mu = 0.6}), "repulsion_mu");
+  EXPECT_EQ(RefusedField(SkeletonOptions{.max_points = 10, .min_points = 20}), "min_points");
+  EXPECT_EQ(RefusedField(SkeletonOptions{.initial_radius_m = 0}), "initial_radius_m");
+  EXPECT_THROW(L1MedialSkeleton({Eigen::Vector3d::Zero()}, SkeletonOptions{.rounds = 0}),
+               InputError);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "preprocessing/option_fixtures.h"
 #include "preprocessing/preprocessing_fixtures.h"
 
 namespace simtree::registration {
@@ -137,6 +138,14 @@ TEST(MedialProjection, WithoutNormalsPointsStay) {
   const open3d::geometry::KDTreeFlann tree(cloud);
   const auto projected = ProjectToMedialAxes(cloud, tree, {0, 5, 9});
   EXPECT_EQ(projected[1], cloud.points_[5]);
+}
+
+TEST(MedialProjection, NonsenseOptionsAreRefused) {
+  using test::RefusedField;
+  EXPECT_EQ(RefusedField(MedialProjectionOptions{}), "");
+  EXPECT_EQ(RefusedField(MedialProjectionOptions{.neighbourhood_m = -0.08}), "neighbourhood_m");
+  EXPECT_EQ(RefusedField(MedialProjectionOptions{.silhouette_containment = 2}),
+            "silhouette_containment");
 }
 
 }  // namespace

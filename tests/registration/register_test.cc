@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include "preprocessing/option_fixtures.h"
 #include "registration_fixtures.h"
 #include "simtree/registration/registration_report.h"
 
@@ -39,7 +40,7 @@ TEST(MultiView, AllViewsRegisterAtTheTree) {
         v.poses[i].world_from_camera, v.poses[a].world_from_camera, v.tree_points);
     EXPECT_LT(e.rotation_deg, 2.0) << v.views[i].name;
     EXPECT_LT(e.tree_rms_m, 0.02) << v.views[i].name;
-    EXPECT_TRUE(result.views[i].verified) << v.views[i].name;
+    EXPECT_TRUE(result.views[i].verified()) << v.views[i].name;
   }
   // The registration frame stands upright: the anchor's ground is z = 0.
   const RegistrationView& anchor = v.views[a];
@@ -61,7 +62,8 @@ TEST(MultiView, AViewThatCannotRegisterIsLeftOutNotMerged) {
   views[4] = test::MakeStandInViews(1, 36.0, 99, {}, "tree02.txt").views[0];
   views[4].name = "view_04";
   const MultiViewResult result = RegisterViews(views, kDefaults);
-  EXPECT_FALSE(result.views[2].registered);
+  EXPECT_FALSE(result.views[2].registered());
+  EXPECT_EQ(result.views[2].outcome, ViewOutcome::kCannotRegister);
   EXPECT_EQ(result.views[2].status, "every pixel is 0");
   EXPECT_GE(result.RegisteredCount(), 4);
   for (const PairEdge& edge : result.pairs) {
@@ -84,6 +86,25 @@ TEST(MultiView, NoViewsAndOneView) {
   const MultiViewResult one = RegisterViews({Views().views[0]}, kDefaults);
   EXPECT_EQ(one.RegisteredCount(), 1);
   EXPECT_TRUE(one.pairs.empty());
+}
+
+TEST(MultiView, NonsenseOptionsAreRefusedNamingTheField) {
+  MultiViewOptions options;
+  options.pair.sac_ia.iterations = -3;
+  try {
+    RegisterViews(Views().views, options);
+    FAIL() << "-3 iterations accepted";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "options: pair.sac_ia.iterations: expected >= 1, got -3");
+  }
+  auto refused = [](auto change) { return test::RefusedFieldAfter<MultiViewOptions>(change); };
+  EXPECT_EQ(refused([](MultiViewOptions& o) { o.max_pair_shift_m = 0; }), "max_pair_shift_m");
+  EXPECT_EQ(refused([](MultiViewOptions& o) { o.neighbour_span = 0; }), "neighbour_span");
+  // An anchor that is no view's index.
+  MultiViewOptions beyond;
+  beyond.anchor = 6;
+  EXPECT_EQ(test::RefusedField(beyond), "");
+  EXPECT_THROW(RegisterViews(Views().views, beyond), InputError);
 }
 
 }  // namespace

@@ -47,17 +47,35 @@ nlohmann::json ReadJson(const fs::path& path) {
 TEST(RegisterCli, RegistersAQuickCaptureAndWritesEveryOutput) {
   const fs::path out = test::TempDir() / "reg";
   const auto r = test::RunCli("-q register \"" + QuickCapture().string() + "\" --out \"" +
-                              out.string() + "\"");
+                              out.string() + "\" --pull-camera");
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  for (const char* file :
-       {"poses.json", "merged.ply", "pairs.md", "pairs.json", "before_after.png"}) {
+  for (const char* file : {"poses.json", "merged.ply", "pairs.md", "pairs.json", "before_after.png",
+                           "pull_camera.json"}) {
     EXPECT_TRUE(fs::exists(out / file)) << file;
   }
+  // The pull camera, placed or not, says which and why.
+  const auto pull = ReadJson(out / "pull_camera.json");
+  EXPECT_EQ(pull["format"], "simtree.pull_camera");
+  EXPECT_EQ(pull["view"], "pull_0");
+  EXPECT_EQ(pull["pairs"].size(), 4u);
+  EXPECT_EQ(pull["placed"], !pull["frame_from_camera"].is_null()) << pull["status"];
   const auto poses = ReadJson(out / "poses.json");
   EXPECT_EQ(poses["format"], "simtree.registration");
   EXPECT_EQ(poses["views"].size(), 4u);
   EXPECT_EQ(poses["registered"], 4) << r.output;
   EXPECT_GT(ReadColorImage(out / "before_after.png").width, 1000);
+}
+
+TEST(RegisterCli, APullCameraWithoutAPullStreamIsRefusedBeforeAnyWork) {
+  const fs::path tmp = test::TempDir();
+  const fs::path capture = Copy(tmp, "capture");
+  fs::remove_all(capture / "pull");
+  const auto r = test::RunCli("register \"" + capture.string() + "\" --out \"" +
+                              (tmp / "reg").string() + "\" --pull-camera");
+  EXPECT_NE(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("expected a pull-test stream for --pull-camera"));
+  EXPECT_THAT(r.output, Not(HasSubstr("preprocess")));  // no view was read
+  EXPECT_FALSE(fs::exists(tmp / "reg"));
 }
 
 TEST(RegisterCli, PreprocessThenRegisterGivesTheSamePoses) {

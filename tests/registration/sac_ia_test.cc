@@ -5,7 +5,9 @@
 #include <random>
 
 #include <gtest/gtest.h>
+
 #include <open3d/pipelines/registration/Feature.h>
+#include "preprocessing/option_fixtures.h"
 
 namespace simtree::registration {
 namespace {
@@ -116,6 +118,14 @@ TEST(SampleConsensus, TooFewPointsFindNothing) {
   open3d::pipelines::registration::Feature f;
   f.Resize(33, 2);
   EXPECT_FALSE(SampleConsensusInitialAlignment(tiny, f, tiny, f, {}).found);
+}
+
+TEST(SampleConsensus, NonsenseOptionsAreRefused) {
+  using test::RefusedField;
+  EXPECT_EQ(RefusedField(SacIaOptions{}), "");
+  EXPECT_EQ(RefusedField(SacIaOptions{.samples = 1}), "samples");
+  EXPECT_EQ(RefusedField(SacIaOptions{.inlier_distance_m = 0}), "inlier_distance_m");
+  EXPECT_EQ(RefusedField(SacIaOptions{.edge_length_similarity = 1.2}), "edge_length_similarity");
 }
 
 }  // namespace

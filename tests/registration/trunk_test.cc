@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "preprocessing/option_fixtures.h"
 #include "preprocessing/preprocessing_fixtures.h"
 
 namespace simtree::registration {
@@ -89,6 +90,20 @@ TEST(Trunk, NoUprightStemMeansNoTrunk) {
   open3d::geometry::PointCloud few;
   few.points_.resize(5, Eigen::Vector3d(0, 0, 2));
   EXPECT_FALSE(FindTrunk(few, kUp, 0.01, {}, &why));
+}
+
+TEST(Trunk, NonsenseOptionsAreRefused) {
+  using test::RefusedField;
+  EXPECT_EQ(RefusedField(TrunkOptions{}), "");
+  EXPECT_EQ(RefusedField(TrunkOptions{.slice_height_m = 0}), "slice_height_m");
+  EXPECT_EQ(RefusedField(TrunkOptions{.min_arm_share = 1.5}), "min_arm_share");
+  EXPECT_EQ(RefusedField(CylinderFitOptions{}), "");
+  EXPECT_EQ(RefusedField(CylinderFitOptions{.min_points = 4}), "min_points");
+  EXPECT_EQ(RefusedField(KeyRegionOptions{}), "");
+  EXPECT_EQ(RefusedField(KeyRegionOptions{.min_radius_m = 2.0}), "min_radius_m");  // > max
+  open3d::geometry::PointCloud cloud;
+  EXPECT_THROW(FindTrunk(cloud, -Eigen::Vector3d::UnitY(), 0.01, {.max_gap_slices = -1}),
+               InputError);
 }
 
 }  // namespace

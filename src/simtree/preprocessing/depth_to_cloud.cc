@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "simtree/core/error.h"
+#include "simtree/preprocessing/detail/option_checks.h"
 
 namespace simtree::preprocessing {
 namespace {
@@ -29,9 +30,18 @@ bool IsFlying(const DepthImage& depth, int u, int v, double scale,
 
 }  // namespace
 
+void DepthToCloudOptions::Validate() const {
+  CheckNonNegative("min_depth_m", min_depth_m);
+  CheckOrdered("min_depth_m", min_depth_m, "max_depth_m", max_depth_m);
+  CheckAtLeast("stride", stride, 1);
+  CheckNonNegative("flying_min_jump_m", flying_min_jump_m);
+  CheckShare("flying_jump_share", flying_jump_share);
+}
+
 open3d::geometry::PointCloud DepthToCloud(const RgbdImage& image,
                                           const DepthToCloudOptions& options,
                                           const std::string& source) {
+  options.Validate();
   ValidateIntrinsics(image.intrinsics, source);
   const CameraIntrinsics& k = image.intrinsics;
   if (image.depth.width != k.width || image.depth.height != k.height) {
@@ -45,7 +55,6 @@ open3d::geometry::PointCloud DepthToCloud(const RgbdImage& image,
                      fmt::format("expected a {}x{} colour image registered to the depth, got {}x{}",
                                  k.width, k.height, image.color.width, image.color.height));
   }
-  if (options.stride < 1) throw InputError(source, "stride", "expected a stride of at least 1");
 
   open3d::geometry::PointCloud cloud;
   cloud.points_.reserve(image.depth.pixel_count() / (options.stride * options.stride) / 2);

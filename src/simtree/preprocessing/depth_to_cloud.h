@@ -11,20 +11,22 @@ namespace simtree::preprocessing {
 struct DepthToCloudOptions {
   // Depths outside [min_depth_m, max_depth_m] are dropped (the Azure Kinect NFOV unbinned mode
   // measures 0.5-3.86 m; a little margin either side).
-  double min_depth_m = 0.25;
-  double max_depth_m = 6.0;
-  // Take every `stride`-th pixel in x and y (1: all).
-  int stride = 1;
+  double min_depth_m = 0.25;  // m, >= 0
+  double max_depth_m = 6.0;   // m, >= min_depth_m
+  int stride = 1;             // take every stride-th pixel in x and y, >= 1 (1: all)
   // Flying pixels: a time-of-flight pixel on a depth edge mixes the near and the far surface and
   // lands in between, on neither. A pixel none of whose 8 neighbours is within
-  // max(flying_min_jump_m, flying_jump_share * depth) of its depth is dropped as one. 0: keep all.
-  double flying_min_jump_m = 0.03;
-  double flying_jump_share = 0.015;
-  bool with_colors = true;
+  // max(flying_min_jump_m, flying_jump_share * depth) of its depth is dropped as one.
+  double flying_min_jump_m = 0.03;   // m, >= 0 (0: keep every pixel)
+  double flying_jump_share = 0.015;  // of the pixel's depth, [0, 1]
+  bool with_colors = true;           // colour the points from the colour image
+
+  // Throws InputError naming the field of a nonsense value.
+  void Validate() const;
 };
 
-// Throws InputError (naming `source`) when the depth or colour image does not match the
-// intrinsics. An image with no valid depth gives an empty cloud.
+// Throws InputError for nonsense options, and (naming `source`) when the depth or colour image does
+// not match the intrinsics. An image with no valid depth gives an empty cloud.
 open3d::geometry::PointCloud DepthToCloud(const RgbdImage& image,
                                           const DepthToCloudOptions& options = {},
                                           const std::string& source = "<memory>");

@@ -5,10 +5,18 @@
 
 #include <open3d/geometry/KDTreeFlann.h>
 
+#include "simtree/preprocessing/detail/option_checks.h"
+
 namespace simtree::preprocessing {
+
+void SpacingOptions::Validate() const {
+  CheckPositive("max_samples", static_cast<double>(max_samples));
+  CheckAtLeast("neighbours", neighbours, 2);
+}
 
 double MedianPointSpacing(const open3d::geometry::PointCloud& cloud,
                           const SpacingOptions& options) {
+  options.Validate();
   const size_t n = cloud.points_.size();
   if (n < 2) return 0.0;
   std::vector<size_t> sample(n);

@@ -10,10 +10,14 @@
 namespace simtree::preprocessing {
 
 struct SpacingOptions {
-  size_t max_samples = 4000;  // points whose nearest neighbour is measured (a seeded sample)
-  // Neighbours searched per point: the nearest one that is not an exact duplicate counts.
+  size_t max_samples = 4000;  // points whose nearest neighbour is measured (a seeded sample), > 0
+  // Neighbours searched per point (the point itself included), >= 2: the nearest one that is
+  // not an exact duplicate counts.
   int neighbours = 4;
-  uint64_t seed = 1;
+  uint64_t seed = 1;  // of the sample
+
+  // Throws InputError naming the field of a nonsense value.
+  void Validate() const;
 };
 
 // Median distance from a point to its nearest neighbour; 0 for clouds of fewer than two points.

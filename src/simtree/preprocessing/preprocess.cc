@@ -19,33 +19,66 @@ namespace {
 
 nlohmann::ordered_json Vector(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
+// One RGB-D image (`load`, named `source` in errors) to a clean tree cloud; an InputError
+// (unreadable images, no depth, no tree) becomes the view's failure.
+template <class Load>
+PreprocessedView PreprocessRgbd(const std::string& name, const std::string& source, Load load,
+                                const PreprocessOptions& preprocess,
+                                const DepthToCloudOptions& depth) {
+  PreprocessedView view;
+  view.name = name;
+  try {
+    const RgbdImage image = load();
+    const auto cloud = DepthToCloud(image, depth, source);
+    view.result = PreprocessView(cloud, preprocess, source);
+  } catch (const InputError& e) {
+    view.failure = e.what();
+    spdlog::warn("{}", e.what());
+  }
+  return view;
+}
+
 }  // namespace
 
 std::vector<PreprocessedView> PreprocessCaptureViews(const Capture& capture,
                                                      const PreprocessOptions& preprocess,
                                                      const DepthToCloudOptions& depth) {
+  preprocess.Validate();
+  depth.Validate();
   std::vector<PreprocessedView> views;
   Progress progress("preprocess", static_cast<int64_t>(capture.views.size()), "views");
   for (const ScanView& scan : capture.views) {
-    PreprocessedView view;
-    view.name = scan.name;
-    try {
-      const RgbdImage image = LoadScanView(scan);
-      const auto cloud = DepthToCloud(image, depth, scan.directory.string());
-      view.result = PreprocessView(cloud, preprocess, scan.directory.string());
-    } catch (const InputError& e) {
-      view.failure = e.what();
-      spdlog::warn("{}", e.what());
-    }
-    views.push_back(std::move(view));
+    views.push_back(PreprocessRgbd(
+        scan.name, scan.directory.string(), [&] { return LoadScanView(scan); }, preprocess, depth));
     progress.Advance();
   }
   return views;
 }
 
+PreprocessedView PreprocessPullFrame(const Capture& capture, size_t index,
+                                     const PreprocessOptions& preprocess,
+                                     const DepthToCloudOptions& depth) {
+  preprocess.Validate();
+  depth.Validate();
+  if (!capture.pull) {
+    throw InputError(capture.root.string(), "pull/", "expected a pull-test stream, found none");
+  }
+  const PullStream& pull = *capture.pull;
+  if (index >= pull.frames.size()) {
+    throw InputError(
+        (pull.directory / "frames.csv").string(), "",
+        fmt::format("expected a frame {}, the stream has {}", index, pull.frames.size()));
+  }
+  return PreprocessRgbd(
+      fmt::format("pull_{}", pull.frames[index].frame),
+      (pull.directory / pull.frames[index].depth).string(),
+      [&] { return LoadPullFrame(pull, index); }, preprocess, depth);
+}
+
 std::vector<PreprocessedView> PreprocessCloudFiles(const std::vector<fs::path>& files,
                                                    const Eigen::Vector3d& up,
                                                    const PreprocessOptions& preprocess) {
+  preprocess.Validate();
   std::vector<PreprocessedView> views;
   for (const fs::path& file : files) {
     PreprocessedView view;
@@ -65,6 +98,8 @@ std::vector<PreprocessedView> PreprocessCloudFiles(const std::vector<fs::path>& 
 std::vector<PreprocessedView> LoadViews(const fs::path& input, const PreprocessOptions& preprocess,
                                         const DepthToCloudOptions& depth,
                                         const Eigen::Vector3d& cloud_up) {
+  preprocess.Validate();
+  depth.Validate();
   if (!fs::is_directory(input)) {
     throw InputError(input.string(), "",
                      "expected a folder: a capture (scans/), the output of `simtree preprocess` "
@@ -147,46 +182,33 @@ void WritePreprocessedViews(const std::vector<PreprocessedView>& views, const fs
 }
 
 std::vector<PreprocessedView> ReadPreprocessedViews(const fs::path& folder) {
-  const fs::path path = folder / "preprocess.json";
-  const JsonReader json(path.string());
-  const nlohmann::json doc = ParseJson(ReadFile(path), path.string());
-  json.Object(doc, "");
-  if (json.String(json.Field(doc, "format", ""), "format") != kPreprocessFormat) {
-    json.Fail("format", fmt::format("expected \"{}\"", kPreprocessFormat));
-  }
-  if (json.Integer(json.Field(doc, "version", ""), "version") != kPreprocessFormatVersion) {
-    json.Fail("version", fmt::format("expected {}", kPreprocessFormatVersion));
-  }
-  const nlohmann::json& list = json.Array(json.Field(doc, "views", ""), "views");
+  const JsonDocument file = ReadJsonDocument(folder / "preprocess.json");
+  const JsonNode doc = file.root();
+  CheckFormat(doc, kPreprocessFormat, kPreprocessFormatVersion);
   std::vector<PreprocessedView> views;
-  for (size_t i = 0; i < list.size(); ++i) {
-    const std::string at = Element("views", i);
-    const nlohmann::json& v = json.Object(list[i], at);
+  for (const JsonNode& v : doc.Field("views").Items()) {
     PreprocessedView view;
-    view.name = json.String(json.Field(v, "name", at), Member(at, "name"));
-    const nlohmann::json& cloud = json.Field(v, "cloud", at);
+    view.name = v.String("name");
+    const JsonNode cloud = v.Field("cloud");
     if (cloud.is_null()) {
-      view.failure = json.Has(v, "failure") ? json.String(v["failure"], Member(at, "failure"))
-                                            : std::string("failed in preprocessing");
+      const auto failure = v.Find("failure");
+      view.failure = failure ? failure->String() : std::string("failed in preprocessing");
       views.push_back(std::move(view));
       continue;
     }
     PreprocessResult r;
-    r.cloud = ReadPointCloud(folder / json.String(cloud, Member(at, "cloud")));
-    r.up = json.Vector3(json.Field(v, "up", at), Member(at, "up")).normalized();
-    const nlohmann::json& ground = json.Field(v, "ground", at);
+    r.cloud = ReadPointCloud(folder / cloud.String());
+    r.up = v.Vector3("up").normalized();
+    const JsonNode ground = v.Field("ground");
     if (!ground.is_null()) {
-      const std::string g_at = Member(at, "ground");
       GroundPlane g;
-      g.normal = json.Vector3(json.Field(ground, "normal", g_at), Member(g_at, "normal"));
-      g.normal.normalize();
-      g.offset = json.Number(json.Field(ground, "offset", g_at), Member(g_at, "offset"));
-      g.noise_m = json.Number(json.Field(ground, "noise_m", g_at), Member(g_at, "noise_m"));
+      g.normal = ground.Vector3("normal").normalized();
+      g.offset = ground.Number("offset");
+      g.noise_m = ground.Number("noise_m");
       r.ground = g;
     }
-    r.point_spacing_m =
-        json.Number(json.Field(v, "point_spacing_m", at), Member(at, "point_spacing_m"));
-    r.voxel_size_m = json.Number(json.Field(v, "voxel_size_m", at), Member(at, "voxel_size_m"));
+    r.point_spacing_m = v.Number("point_spacing_m");
+    r.voxel_size_m = v.Number("voxel_size_m");
     view.result = std::move(r);
     views.push_back(std::move(view));
   }

@@ -36,6 +36,14 @@ std::vector<PreprocessedView> PreprocessCaptureViews(const Capture& capture,
                                                      const PreprocessOptions& preprocess = {},
                                                      const DepthToCloudOptions& depth = {});
 
+// Frame `index` of the capture's pull-test stream (its first, still frame by default), through
+// the same preprocessing as the scan views; named "pull_<frame>". A frame that cannot be used is
+// returned with the reason. Throws InputError when the capture has no pull stream or no such
+// frame.
+PreprocessedView PreprocessPullFrame(const Capture& capture, size_t index = 0,
+                                     const PreprocessOptions& preprocess = {},
+                                     const DepthToCloudOptions& depth = {});
+
 // Point-cloud files as views (each in its sensor's frame; `up` in that frame when no ground is
 // found), named after the files.
 std::vector<PreprocessedView> PreprocessCloudFiles(const std::vector<std::filesystem::path>& files,

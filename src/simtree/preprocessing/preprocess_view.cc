@@ -13,6 +13,7 @@
 
 #include "simtree/core/error.h"
 #include "simtree/core/statistics.h"
+#include "simtree/preprocessing/detail/option_checks.h"
 #include "simtree/preprocessing/point_spacing.h"
 
 namespace simtree::preprocessing {
@@ -39,6 +40,22 @@ std::pair<Eigen::Vector3d, double> FitPlane(const std::vector<Eigen::Vector3d>& 
 
 }  // namespace
 
+void PreprocessOptions::Validate() const {
+  CheckPositive("ground_search_band_m", ground_search_band_m);
+  CheckNonNegative("ground_noise_sigmas", ground_noise_sigmas);
+  CheckNonNegative("min_ground_band_m", min_ground_band_m);
+  CheckRange("max_ground_tilt_deg", max_ground_tilt_deg, 0.0, 90.0);
+  CheckPositive("ground_ransac_iterations", ground_ransac_iterations);
+  CheckPositive("ground_sample_points", static_cast<double>(ground_sample_points));
+  CheckShare("min_ground_share", min_ground_share);
+  CheckNonNegative("outlier_neighbors", outlier_neighbors);
+  CheckPositive("outlier_std_ratio", outlier_std_ratio);
+  CheckNonNegative("voxel_size_m", voxel_size_m);
+  CheckPositive("voxel_spacing_factor", voxel_spacing_factor);
+  CheckPositive("cluster_link_factor", cluster_link_factor);
+  CheckNonNegative("cluster_attach_distance_m", cluster_attach_distance_m);
+}
+
 double PreprocessResult::DownsampleRemovedShare() const {
   const size_t before = input_points - ground_points - outlier_points;
   if (before == 0) return 0.0;
@@ -47,6 +64,7 @@ double PreprocessResult::DownsampleRemovedShare() const {
 
 std::optional<GroundPlane> FindGroundPlane(const PointCloud& cloud,
                                            const PreprocessOptions& options) {
+  options.Validate();
   const size_t n = cloud.points_.size();
   if (n < 3) return std::nullopt;
   std::mt19937_64 rng(options.seed);
@@ -128,6 +146,7 @@ std::optional<GroundPlane> FindGroundPlane(const PointCloud& cloud,
 
 PreprocessResult PreprocessView(const PointCloud& camera_cloud, const PreprocessOptions& options,
                                 const std::string& source) {
+  options.Validate();
   const auto start = std::chrono::steady_clock::now();
   PreprocessResult result;
   result.input_points = camera_cloud.points_.size();

@@ -23,37 +23,38 @@ struct PreprocessOptions {
   // fewest points below it (the scene stands on the ground). Points within
   // `ground_noise_sigmas` robust standard deviations of it (at least `min_ground_band_m`) and
   // below it are removed.
-  bool remove_ground = true;
-  double ground_search_band_m = 0.05;
-  double ground_noise_sigmas = 3.0;
-  double min_ground_band_m = 0.01;
-  double max_ground_tilt_deg = 30.0;
-  int ground_ransac_iterations = 400;
-  size_t ground_sample_points = 20000;
-  // A plane holding fewer than this share of the cloud is not taken for the ground.
-  double min_ground_share = 0.05;
+  bool remove_ground = true;            // find and remove the ground plane
+  double ground_search_band_m = 0.05;   // m, half-width of a RANSAC plane's inlier band
+  double ground_noise_sigmas = 3.0;     // ground noise sigmas removed above the plane
+  double min_ground_band_m = 0.01;      // m, the least band removed above the plane
+  double max_ground_tilt_deg = 30.0;    // deg, [0, 90]: the ground normal off the camera's -y
+  int ground_ransac_iterations = 400;   // RANSAC planes tried, > 0
+  size_t ground_sample_points = 20000;  // points the RANSAC scores planes on, > 0
+  double min_ground_share = 0.05;       // [0, 1]: a plane holding less of the sample is no ground
 
   // Statistical outlier removal: a point whose mean distance to its `outlier_neighbors` nearest
   // neighbours exceeds the cloud's mean by `outlier_std_ratio` standard deviations goes.
-  int outlier_neighbors = 16;
-  double outlier_std_ratio = 2.0;
+  int outlier_neighbors = 16;      // neighbours per point, >= 0 (0: no outlier removal)
+  double outlier_std_ratio = 2.0;  // standard deviations allowed, > 0
 
   // Voxel grid: `voxel_size_m`, or when 0, `voxel_spacing_factor` times the measured point
   // spacing of the tree points (the paper: 2-3 times).
-  double voxel_size_m = 0.0;
-  double voxel_spacing_factor = 2.5;
+  double voxel_size_m = 0.0;          // m, >= 0 (0: voxel_spacing_factor x point spacing)
+  double voxel_spacing_factor = 2.5;  // point spacings, > 0
 
   // Tree cluster: connected components at `cluster_link_factor` voxels; the largest is the tree,
   // and smaller ones closer to it than `cluster_attach_distance_m` (twigs cut off by sensor
   // dropout) stay with it.
-  bool keep_tree_cluster = true;
-  double cluster_link_factor = 3.0;
-  double cluster_attach_distance_m = 0.12;
+  bool keep_tree_cluster = true;            // drop the clusters away from the tree
+  double cluster_link_factor = 3.0;         // voxels, > 0
+  double cluster_attach_distance_m = 0.12;  // m, >= 0
 
-  // Fewer points than this off the ground: there is no tree in the view.
-  size_t min_tree_points = 100;
+  size_t min_tree_points = 100;  // fewer points off the ground: no tree in the view (an error)
 
-  uint64_t seed = 1;
+  uint64_t seed = 1;  // of the RANSAC and of the spacing's sample
+
+  // Throws InputError naming the field of a nonsense value (a negative size, a NaN...).
+  void Validate() const;
 };
 
 struct GroundPlane {

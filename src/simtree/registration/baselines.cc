@@ -8,6 +8,8 @@
 #include <open3d/utility/Random.h>
 #include <Eigen/Eigenvalues>
 
+#include "simtree/preprocessing/detail/option_checks.h"
+
 namespace simtree::registration {
 namespace {
 
@@ -41,10 +43,24 @@ std::pair<Eigen::Vector3d, Eigen::Matrix3d> Principal(const open3d::geometry::Po
 
 }  // namespace
 
+void BaselineOptions::Validate() const {
+  using namespace preprocessing;
+  CheckPositive("spacing_m", spacing_m);
+  CheckPositive("feature_voxel_factor", feature_voxel_factor);
+  CheckPositive("normal_radius_factor", normal_radius_factor);
+  CheckPositive("feature_radius_factor", feature_radius_factor);
+  CheckPositive("ransac_distance_factor", ransac_distance_factor);
+  CheckAtLeast("ransac_iterations", ransac_iterations, 1);
+  CheckShare("ransac_confidence", ransac_confidence);
+  CheckPositiveList("icp_distance_factors", icp_distance_factors, true);
+  CheckAtLeast("icp_iterations", icp_iterations, 1);
+}
+
 Eigen::Isometry3d Open3dIcp(const open3d::geometry::PointCloud& source,
                             const open3d::geometry::PointCloud& target,
                             const Eigen::Isometry3d& initial, const BaselineOptions& options,
                             double* fitness) {
+  options.Validate();
   Eigen::Matrix4d transform = initial.matrix();
   reg::RegistrationResult result;
   for (double factor : options.icp_distance_factors) {
@@ -60,6 +76,7 @@ Eigen::Isometry3d Open3dIcp(const open3d::geometry::PointCloud& source,
 BaselineResult PcaIcp(const open3d::geometry::PointCloud& source_in,
                       const open3d::geometry::PointCloud& target_in,
                       const BaselineOptions& options) {
+  options.Validate();
   const auto start = Clock::now();
   const double normal_radius = 3.0 * options.spacing_m;
   const auto source = WithNormals(source_in, normal_radius);
@@ -95,6 +112,7 @@ BaselineResult PcaIcp(const open3d::geometry::PointCloud& source_in,
 BaselineResult Open3dFpfhRansacIcp(const open3d::geometry::PointCloud& source_in,
                                    const open3d::geometry::PointCloud& target_in,
                                    const BaselineOptions& options) {
+  options.Validate();
   const auto start = Clock::now();
   const double voxel = options.feature_voxel_factor * options.spacing_m;
   auto down = [&](const open3d::geometry::PointCloud& cloud) {

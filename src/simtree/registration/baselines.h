@@ -6,6 +6,7 @@
 // needs itself, so its time is the whole pair's.
 
 #include <string>
+#include <vector>
 
 #include <open3d/geometry/PointCloud.h>
 #include <Eigen/Geometry>
@@ -21,17 +22,20 @@ struct BaselineResult {
 };
 
 struct BaselineOptions {
-  double spacing_m = 0.01;  // the clouds' point spacing: distances are multiples of it
-  double feature_voxel_factor = 2.0;
-  double normal_radius_factor = 2.0;    // of the feature voxel
-  double feature_radius_factor = 5.0;   // of the feature voxel
-  double ransac_distance_factor = 1.5;  // of the feature voxel
-  int ransac_iterations = 100000;
-  double ransac_confidence = 0.999;
-  // Open3D point-to-plane ICP at these distances (in point spacings), coarse to fine.
+  double spacing_m = 0.01;  // m, > 0: the clouds' point spacing; distances are multiples of it
+  double feature_voxel_factor = 2.0;    // point spacings, > 0: the FPFH clouds' voxel grid
+  double normal_radius_factor = 2.0;    // feature voxels, > 0: the FPFH clouds' normals
+  double feature_radius_factor = 5.0;   // feature voxels, > 0: the FPFH radius
+  double ransac_distance_factor = 1.5;  // feature voxels, > 0: RANSAC's inlier distance
+  int ransac_iterations = 100000;       // >= 1
+  double ransac_confidence = 0.999;     // [0, 1]
+  // Point spacings, each > 0, largest first: Open3D point-to-plane ICP's distances (empty: none).
   std::vector<double> icp_distance_factors = {6.0, 3.0, 1.5};
-  int icp_iterations = 30;
-  int seed = 1;
+  int icp_iterations = 30;  // >= 1, per distance
+  int seed = 1;             // of RANSAC
+
+  // Throws InputError naming the field of a nonsense value.
+  void Validate() const;
 };
 
 // PCA-ICP: centroids and principal axes aligned (of the four proper sign choices of the axes,

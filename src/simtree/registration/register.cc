@@ -2,67 +2,157 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
-#include <numbers>
+#include <limits>
 #include <set>
 
 #include <fmt/format.h>
 #include <oneapi/tbb/parallel_for.h>
-#include <open3d/pipelines/registration/GlobalOptimization.h>
-#include <open3d/pipelines/registration/PoseGraph.h>
-#include <open3d/pipelines/registration/Registration.h>
-#include <open3d/utility/Logging.h>
+
+#include "simtree/core/error.h"
+#include "simtree/preprocessing/detail/option_checks.h"
+#include "simtree/registration/detail/pose_graph.h"
 
 namespace simtree::registration {
 namespace {
 
-namespace reg = open3d::pipelines::registration;
-
-double RotationDeg(const Eigen::Isometry3d& t) {
-  return std::abs(Eigen::AngleAxisd(t.linear()).angle()) * 180.0 / std::numbers::pi;
-}
-
-// A point that stands for where a view's tree is (its key region's centre, else its centroid).
-Eigen::Vector3d LeverPoint(const RegistrationView& view) {
-  if (view.key_region) return view.key_region->center;
-  return view.cloud ? view.cloud->GetCenter() : Eigen::Vector3d::Zero();
-}
-
-// Poses (anchor_from_view) of the views reachable from `anchor` through `usable` pairs, taking
-// the best-matching pair into the known set first. Unreached views stay nullopt.
-std::vector<std::optional<Eigen::Isometry3d>> ChainPoses(const std::vector<PairEdge>& pairs,
-                                                         const std::vector<char>& usable,
-                                                         int view_count, int anchor,
-                                                         std::vector<char>& in_tree) {
-  std::vector<std::optional<Eigen::Isometry3d>> poses(view_count);
-  poses[anchor] = Eigen::Isometry3d::Identity();
-  in_tree.assign(pairs.size(), 0);
-  for (;;) {
-    int best = -1;
-    for (size_t e = 0; e < pairs.size(); ++e) {
-      if (!usable[e]) continue;
-      const bool s = poses[pairs[e].source].has_value(), t = poses[pairs[e].target].has_value();
-      if (s == t) continue;
-      if (best < 0 || pairs[e].result.match_rate > pairs[best].result.match_rate) best = e;
-    }
-    if (best < 0) break;
-    const PairEdge& edge = pairs[best];
-    const Eigen::Isometry3d& t_from_s = edge.result.target_from_source;
-    if (poses[edge.target]) {
-      poses[edge.source] = *poses[edge.target] * t_from_s;
-    } else {
-      poses[edge.target] = *poses[edge.source] * t_from_s.inverse();
-    }
-    in_tree[best] = 1;
+// Every pair around the ring (ViewPairs), each registered on its own, all at once (each pair's
+// ICP is parallel too).
+std::vector<PairEdge> RegisterViewPairs(const std::vector<RegistrationView>& views,
+                                        const MultiViewOptions& options) {
+  std::vector<PairEdge> pairs;
+  for (const auto& [s, t] : ViewPairs(static_cast<int>(views.size()), options)) {
+    PairEdge edge;
+    edge.source = s;
+    edge.target = t;
+    pairs.push_back(edge);
   }
-  return poses;
+  oneapi::tbb::parallel_for(size_t{0}, pairs.size(), [&](size_t e) {
+    PairEdge& edge = pairs[e];
+    edge.result = RegisterPair(views[edge.source], views[edge.target], options.pair);
+  });
+  return pairs;
+}
+
+// The anchor: the one asked for, else the view with the most trusted pairs (ties: the first).
+int ChooseAnchor(const std::vector<PairEdge>& pairs, int view_count, int requested) {
+  if (requested >= 0) return requested;
+  std::vector<int> degree(view_count, 0);
+  for (const PairEdge& edge : pairs) {
+    if (!edge.result.ok()) continue;
+    ++degree[edge.source];
+    ++degree[edge.target];
+  }
+  return static_cast<int>(std::max_element(degree.begin(), degree.end()) - degree.begin());
+}
+
+// Why view `v`, which no consistent pair links, was left out: the first reason of its own pairs.
+std::string WhyNotLinked(const std::vector<RegistrationView>& views,
+                         const std::vector<PairEdge>& pairs, int v) {
+  std::string reason = "no trusted pair links it to the other views";
+  for (const PairEdge& edge : pairs) {
+    if ((edge.source == v || edge.target == v) && !edge.result.ok()) {
+      reason +=
+          fmt::format(" (with {}: {})", views[edge.source == v ? edge.target : edge.source].name,
+                      edge.result.status);
+      break;
+    }
+  }
+  return reason;
+}
+
+// Each view's outcome and, when registered, its pose in the registration frame: a view is
+// registered when a trusted, consistent pair links it to the anchor, verified when two do.
+std::vector<ViewRegistration> JudgeViews(
+    const std::vector<RegistrationView>& views, const std::vector<PairEdge>& pairs,
+    const std::vector<std::optional<Eigen::Isometry3d>>& anchor_from_view,
+    const Eigen::Isometry3d& frame_from_anchor) {
+  const int n = static_cast<int>(views.size());
+  std::vector<ViewRegistration> out(n);
+  for (const PairEdge& edge : pairs) {
+    if (!edge.used || !edge.consistent) continue;
+    ++out[edge.source].pairs;
+    ++out[edge.target].pairs;
+  }
+  for (int v = 0; v < n; ++v) {
+    ViewRegistration& view = out[v];
+    view.name = views[v].name;
+    if (!views[v].CanRegister()) {
+      view.outcome = ViewOutcome::kCannotRegister;
+      view.status = views[v].failure;
+    } else if (n == 1) {
+      view.outcome = ViewOutcome::kOnlyView;
+    } else if (!anchor_from_view[v] || view.pairs == 0) {
+      view.outcome = ViewOutcome::kNotLinked;
+      view.status = WhyNotLinked(views, pairs, v);
+    } else {
+      view.outcome = view.pairs >= 2 ? ViewOutcome::kVerified : ViewOutcome::kOnePair;
+    }
+    if (view.registered()) {
+      view.status = ToString(view.outcome);
+      view.frame_from_camera = frame_from_anchor * *anchor_from_view[v];
+    }
+  }
+  return out;
+}
+
+// The registered views in the registration frame, one point per voxel of `voxel_factor` times
+// the largest point spacing among them.
+open3d::geometry::PointCloud MergeViews(const std::vector<RegistrationView>& views,
+                                        const std::vector<ViewRegistration>& registered,
+                                        double voxel_factor) {
+  open3d::geometry::PointCloud merged;
+  double spacing = 0.0;
+  for (size_t v = 0; v < views.size(); ++v) {
+    if (!registered[v].registered()) continue;
+    open3d::geometry::PointCloud cloud = *views[v].cloud;
+    cloud.Transform(registered[v].frame_from_camera.matrix());
+    merged += cloud;
+    spacing = std::max(spacing, views[v].spacing_m);
+  }
+  if (spacing > 0 && !merged.points_.empty()) {
+    merged = *merged.VoxelDownSample(voxel_factor * spacing);
+  }
+  return merged;
 }
 
 }  // namespace
 
+void MultiViewOptions::Validate() const {
+  using namespace preprocessing;
+  CheckNested("pair", [&] { pair.Validate(); });
+  CheckAtLeast("neighbour_span", neighbour_span, 1);
+  CheckAtLeast("anchor", anchor, -1);
+  CheckPositive("information_distance_factor", information_distance_factor);
+  CheckShare("edge_prune_threshold", edge_prune_threshold);
+  CheckPositive("max_pair_rotation_deg", max_pair_rotation_deg);
+  CheckPositive("max_pair_shift_m", max_pair_shift_m);
+  CheckPositive("merge_voxel_factor", merge_voxel_factor);
+}
+
+const char* ToString(ViewOutcome outcome) {
+  switch (outcome) {
+    case ViewOutcome::kVerified:
+      return "ok";
+    case ViewOutcome::kOnePair:
+      return "ok (one pair only: not checked by a loop)";
+    case ViewOutcome::kOnlyView:
+      return "ok (the only view)";
+    case ViewOutcome::kCannotRegister:
+      return "cannot be registered";
+    case ViewOutcome::kNotLinked:
+      return "no trusted pair links it to the other views";
+  }
+  return "?";
+}
+
+bool ViewRegistration::registered() const {
+  return outcome == ViewOutcome::kVerified || outcome == ViewOutcome::kOnePair ||
+         outcome == ViewOutcome::kOnlyView;
+}
+
 int MultiViewResult::RegisteredCount() const {
   return static_cast<int>(
-      std::count_if(views.begin(), views.end(), [](const auto& v) { return v.registered; }));
+      std::count_if(views.begin(), views.end(), [](const auto& v) { return v.registered(); }));
 }
 
 std::vector<std::pair<int, int>> ViewPairs(int view_count, const MultiViewOptions& options) {
@@ -114,160 +204,29 @@ Eigen::Isometry3d UprightFrameOf(const RegistrationView& view) {
 
 MultiViewResult RegisterViews(const std::vector<RegistrationView>& views,
                               const MultiViewOptions& options) {
+  options.Validate();
+  const int n = static_cast<int>(views.size());
+  if (options.anchor >= n && n > 0) {
+    throw InputError("options", "anchor",
+                     fmt::format("expected a view index below {}, got {}", n, options.anchor));
+  }
   const auto start = std::chrono::steady_clock::now();
   MultiViewResult result;
-  const int n = static_cast<int>(views.size());
   result.views.resize(n);
   for (int v = 0; v < n; ++v) result.views[v].name = views[v].name;
   if (n == 0) return result;
 
-  // Pairwise registration, every pair at once (each pair's ICP is parallel too).
-  for (const auto& [s, t] : ViewPairs(n, options)) {
-    PairEdge edge;
-    edge.source = s;
-    edge.target = t;
-    result.pairs.push_back(edge);
-  }
-  oneapi::tbb::parallel_for(size_t{0}, result.pairs.size(), [&](size_t e) {
-    PairEdge& edge = result.pairs[e];
-    edge.result = RegisterPair(views[edge.source], views[edge.target], options.pair);
-  });
-  std::vector<char> usable(result.pairs.size());
-  for (size_t e = 0; e < result.pairs.size(); ++e) {
-    usable[e] = result.pairs[e].result.ok;
-    result.pair_seconds += result.pairs[e].result.seconds;
-  }
-
-  // The anchor: the view with the most trusted pairs (ties: the first).
-  if (options.anchor >= 0 && options.anchor < n) {
-    result.anchor = options.anchor;
-  } else {
-    std::vector<int> degree(n, 0);
-    for (size_t e = 0; e < result.pairs.size(); ++e) {
-      if (!usable[e]) continue;
-      ++degree[result.pairs[e].source];
-      ++degree[result.pairs[e].target];
-    }
-    result.anchor =
-        static_cast<int>(std::max_element(degree.begin(), degree.end()) - degree.begin());
-  }
-
-  // Optimise, then drop the worst inconsistent pair and optimise again, until all agree.
-  std::vector<std::optional<Eigen::Isometry3d>> poses;
-  for (int round = 0; round <= static_cast<int>(result.pairs.size()); ++round) {
-    std::vector<char> in_tree;
-    poses = ChainPoses(result.pairs, usable, n, result.anchor, in_tree);
-    // Pose graph over the reached views.
-    std::vector<int> node_of(n, -1), view_of;
-    for (int v = 0; v < n; ++v) {
-      if (!poses[v]) continue;
-      node_of[v] = static_cast<int>(view_of.size());
-      view_of.push_back(v);
-    }
-    reg::PoseGraph graph;
-    for (int v : view_of) graph.nodes_.emplace_back(poses[v]->matrix());
-    int loop_edges = 0;
-    for (size_t e = 0; e < result.pairs.size(); ++e) {
-      const PairEdge& edge = result.pairs[e];
-      if (!usable[e] || node_of[edge.source] < 0 || node_of[edge.target] < 0) continue;
-      const RegistrationView& s = views[edge.source];
-      const RegistrationView& t = views[edge.target];
-      const double distance =
-          options.information_distance_factor * std::max(s.spacing_m, t.spacing_m);
-      const Eigen::Matrix6d information = reg::GetInformationMatrixFromPointClouds(
-          *s.cloud, *t.cloud, distance, edge.result.target_from_source.matrix());
-      graph.edges_.emplace_back(node_of[edge.source], node_of[edge.target],
-                                edge.result.target_from_source.matrix(), information,
-                                /*uncertain=*/!in_tree[e]);
-      if (!in_tree[e]) ++loop_edges;
-    }
-    if (loop_edges > 0) {
-      const double distance = options.information_distance_factor * views[result.anchor].spacing_m;
-      const auto verbosity = open3d::utility::GetVerbosityLevel();
-      open3d::utility::SetVerbosityLevel(open3d::utility::VerbosityLevel::Error);
-      reg::GlobalOptimization(graph, reg::GlobalOptimizationLevenbergMarquardt(),
-                              reg::GlobalOptimizationConvergenceCriteria(),
-                              reg::GlobalOptimizationOption(distance, options.edge_prune_threshold,
-                                                            1.0, node_of[result.anchor]));
-      open3d::utility::SetVerbosityLevel(verbosity);
-      for (size_t k = 0; k < view_of.size(); ++k) {
-        poses[view_of[k]] = Eigen::Isometry3d(graph.nodes_[k].pose_);
-      }
-    }
-
-    // Every trusted pair against the optimised poses.
-    int worst = -1;
-    double worst_excess = 0.0;
-    for (size_t e = 0; e < result.pairs.size(); ++e) {
-      PairEdge& edge = result.pairs[e];
-      edge.used = usable[e];
-      edge.consistent = false;
-      if (!usable[e] || !poses[edge.source] || !poses[edge.target]) continue;
-      const Eigen::Isometry3d predicted = poses[edge.target]->inverse() * *poses[edge.source];
-      const Eigen::Isometry3d error = predicted.inverse() * edge.result.target_from_source;
-      const Eigen::Vector3d lever = LeverPoint(views[edge.source]);
-      edge.rotation_residual_deg = RotationDeg(error);
-      edge.shift_residual_m = (error * lever - lever).norm();
-      const double excess = std::max(edge.rotation_residual_deg / options.max_pair_rotation_deg,
-                                     edge.shift_residual_m / options.max_pair_shift_m);
-      edge.consistent = excess <= 1.0;
-      if (!edge.consistent && excess > worst_excess) {
-        worst_excess = excess;
-        worst = static_cast<int>(e);
-      }
-    }
-    if (worst < 0) break;
-    usable[worst] = 0;
-    result.pairs[worst].used = false;
-  }
-
-  // Views: registered when a consistent pair links them to the anchor.
-  for (size_t e = 0; e < result.pairs.size(); ++e) {
-    const PairEdge& edge = result.pairs[e];
-    if (!edge.used || !edge.consistent) continue;
-    ++result.views[edge.source].pairs;
-    ++result.views[edge.target].pairs;
-  }
+  // Pairs around the ring (and loop closures), each on its own; its checks say if it is trusted.
+  result.pairs = RegisterViewPairs(views, options);
+  for (const PairEdge& edge : result.pairs) result.pair_seconds += edge.result.seconds;
+  result.anchor = ChooseAnchor(result.pairs, n, options.anchor);
+  // One pose per view from the trusted pairs, dropping those the others contradict.
+  PoseGraphSolution graph = SolvePoseGraph(views, std::move(result.pairs), result.anchor, options);
+  result.pairs = std::move(graph.pairs);
+  // The registration frame stands upright on the anchor's ground, at the foot of its trunk.
   result.frame_from_anchor = UprightFrameOf(views[result.anchor]);
-  for (int v = 0; v < n; ++v) {
-    ViewRegistration& view = result.views[v];
-    if (!views[v].CanRegister()) {
-      view.status = views[v].failure;
-    } else if (n == 1) {
-      view.registered = true;
-      view.status = "ok (the only view)";
-    } else if (!poses[v] || view.pairs == 0) {
-      // Say why: the first reason of its own pairs.
-      std::string reason = "no trusted pair links it to the other views";
-      for (const PairEdge& edge : result.pairs) {
-        if ((edge.source == v || edge.target == v) && !edge.result.ok) {
-          reason += fmt::format(" (with {}: {})",
-                                views[edge.source == v ? edge.target : edge.source].name,
-                                edge.result.status);
-          break;
-        }
-      }
-      view.status = reason;
-    } else {
-      view.registered = true;
-      view.verified = view.pairs >= 2;
-      view.status = view.verified ? "ok" : "ok (one pair only: not checked by a loop)";
-    }
-    if (view.registered) view.frame_from_camera = result.frame_from_anchor * *poses[v];
-  }
-
-  // The merged cloud.
-  double spacing = 0.0;
-  for (int v = 0; v < n; ++v) {
-    if (!result.views[v].registered) continue;
-    open3d::geometry::PointCloud cloud = *views[v].cloud;
-    cloud.Transform(result.views[v].frame_from_camera.matrix());
-    result.merged += cloud;
-    spacing = std::max(spacing, views[v].spacing_m);
-  }
-  if (spacing > 0 && !result.merged.points_.empty()) {
-    result.merged = *result.merged.VoxelDownSample(options.merge_voxel_factor * spacing);
-  }
+  result.views = JudgeViews(views, result.pairs, graph.anchor_from_view, result.frame_from_anchor);
+  result.merged = MergeViews(views, result.views, options.merge_voxel_factor);
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -10,12 +10,12 @@
 // on the ground: the frame a static tree is built in.
 //
 // Usage (views prepared from preprocessed clouds, registration_view.h):
-//   std::vector<simtree::registration::RegistrationView> views;
-//   for (const auto& v : simtree::preprocessing::LoadViews("scene/"))
-//     if (v.result) views.push_back(simtree::registration::PrepareView(v.name, *v.result));
-//   const simtree::registration::MultiViewResult result =
-//       simtree::registration::RegisterViews(views, {});
-//   // result.views[i].frame_from_camera: each view's pose; result.merged: the merged cloud
+//   namespace reg = simtree::registration;
+//   const std::vector<reg::RegistrationView> views =
+//       reg::PrepareViews(simtree::preprocessing::LoadViews("scene/"));
+//   const reg::MultiViewResult result = reg::RegisterViews(views, {});
+//   // result.views[i].frame_from_camera: each registered view's pose; result.merged: the
+//   // merged cloud; result.pairs: every pair with its checks.
 
 #include <string>
 #include <vector>
@@ -29,32 +29,44 @@
 namespace simtree::registration {
 
 struct MultiViewOptions {
-  PairOptions pair;
-  // Each view is paired with the next `neighbour_span` views (1: neighbours only, 2: also every
-  // second one, which closes small loops). Views are taken in their order around the tree.
+  PairOptions pair;  // every pair's registration and checks (pairwise.h)
+  // >= 1: each view is paired with the next `neighbour_span` views (1: neighbours only, 2: also
+  // every second one, which closes small loops). Views are taken in their order around the tree.
   int neighbour_span = 2;
-  // The last view is a neighbour of the first (a capture all around the tree).
-  bool closed_ring = true;
-  // The anchor view (its index); -1: the view with the most trusted pairs.
-  int anchor = -1;
-  // Pose graph: correspondence distance for the pairs' information matrices, in point spacings.
+  bool closed_ring = true;  // the last view is a neighbour of the first (a capture all around)
+  int anchor = -1;  // the anchor view's index, below the view count (-1: the most trusted pairs)
+  // Point spacings, > 0: the correspondence distance of the pairs' information matrices.
   double information_distance_factor = 1.5;
-  double edge_prune_threshold = 0.25;
-  // After optimisation a pair is inconsistent when its own result and the optimised poses differ
-  // by more than this rotation or move its source's key region by more than this distance.
-  double max_pair_rotation_deg = 1.5;
-  double max_pair_shift_m = 0.025;
-  // The merged cloud is thinned to one point per voxel of this many point spacings.
-  double merge_voxel_factor = 1.0;
+  double edge_prune_threshold = 0.25;  // [0, 1]: Open3D's line process prunes loop edges below
+  // A pair disagrees with the optimised poses when its own result and theirs differ by more than
+  // this rotation, or move its source's key region by more than this distance.
+  double max_pair_rotation_deg = 1.5;  // deg, > 0
+  double max_pair_shift_m = 0.025;     // m, > 0
+  double merge_voxel_factor = 1.0;     // point spacings, > 0: the merged cloud's voxel grid
+
+  // Throws InputError naming the field of a nonsense value (pair.sac_ia.iterations, ...).
+  void Validate() const;
 };
+
+// How a view ended.
+enum class ViewOutcome {
+  kVerified,        // "ok": registered, in a loop of consistent pairs
+  kOnePair,         // "ok (one pair only: not checked by a loop)": registered, not verified
+  kOnlyView,        // "ok (the only view)": registered, there is nothing to pair it with
+  kCannotRegister,  // left out: the view itself cannot be registered (RegistrationView::failure)
+  kNotLinked,       // left out: no trusted, consistent pair links it to the other views
+};
+const char* ToString(ViewOutcome outcome);
 
 struct ViewRegistration {
   std::string name;
-  bool registered = false;
-  bool verified = false;  // in a loop of consistent pairs (not a dangling chain)
-  std::string status;     // "ok", or why the view was left out
-  Eigen::Isometry3d frame_from_camera = Eigen::Isometry3d::Identity();
+  ViewOutcome outcome = ViewOutcome::kNotLinked;
+  std::string status;  // "ok", or why the view was left out (poses.json, pairs.md)
+  Eigen::Isometry3d frame_from_camera = Eigen::Isometry3d::Identity();  // when registered
   int pairs = 0;  // trusted, consistent pairs it takes part in
+
+  bool registered() const;
+  bool verified() const { return outcome == ViewOutcome::kVerified; }
 };
 
 struct PairEdge {
@@ -80,6 +92,7 @@ struct MultiViewResult {
 // The pairs RegisterViews would register, as (source, target) view indices.
 std::vector<std::pair<int, int>> ViewPairs(int view_count, const MultiViewOptions& options);
 
+// Throws InputError for nonsense options (an anchor that is no view's index included).
 MultiViewResult RegisterViews(const std::vector<RegistrationView>& views,
                               const MultiViewOptions& options = {});
 

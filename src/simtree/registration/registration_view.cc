@@ -5,8 +5,11 @@
 #include <Eigen/Eigenvalues>
 
 #include <fmt/format.h>
+#include <oneapi/tbb/parallel_for.h>
 
 #include "simtree/core/error.h"
+#include "simtree/core/progress.h"
+#include "simtree/preprocessing/detail/option_checks.h"
 #include "simtree/preprocessing/point_spacing.h"
 #include "simtree/registration/detail/medial_projection.h"
 
@@ -40,7 +43,11 @@ std::vector<Eigen::Vector3d> MedialPoints(const RegistrationView& view,
   MedialProjectionOptions projection = options.projection;
   projection.neighbourhood_m =
       std::max(projection.neighbourhood_m, options.projection_radius_factor * view.spacing_m);
-  if (view.trunk) projection.max_shift_m = std::max(0.05, 0.6 * view.trunk->visible_width_m);
+  if (view.trunk) {
+    projection.max_shift_m =
+        std::max(options.projection_min_shift_m,
+                 options.projection_shift_trunk_share * view.trunk->visible_width_m);
+  }
   PointCloud projected;
   projected.points_ = ProjectToMedialAxes(*view.cloud, *view.cloud_tree, indices, projection);
   return projected.VoxelDownSample(options.skeleton_input_voxel_factor * view.spacing_m)->points_;
@@ -50,7 +57,8 @@ std::vector<Eigen::Vector3d> MedialPoints(const RegistrationView& view,
 PointCloud SkeletonCloud(const RegistrationView& view, const std::vector<Eigen::Vector3d>& points,
                          const RegistrationViewOptions& options) {
   SkeletonOptions skeleton = options.skeleton;
-  skeleton.initial_radius_m = std::max(0.04, options.skeleton_radius_factor * view.spacing_m);
+  skeleton.initial_radius_m =
+      std::max(skeleton.initial_radius_m, options.skeleton_radius_factor * view.spacing_m);
   PointCloud cloud;
   cloud.points_ = L1MedialSkeleton(points, skeleton).points;
   return cloud;
@@ -118,9 +126,29 @@ CoarseInput ParseCoarseInput(const std::string& name) {
                                name));
 }
 
+void RegistrationViewOptions::Validate() const {
+  using namespace preprocessing;
+  CheckPositive("normal_radius_factor", normal_radius_factor);
+  CheckAtLeast("normal_max_neighbors", normal_max_neighbors, 1);
+  CheckNested("trunk", [&] { trunk.Validate(); });
+  CheckNested("cylinder", [&] { cylinder.Validate(); });
+  CheckNested("key_region", [&] { key_region.Validate(); });
+  CheckNested("skeleton", [&] { skeleton.Validate(); });
+  CheckNested("projection", [&] { projection.Validate(); });
+  CheckNonNegative("projection_radius_factor", projection_radius_factor);
+  CheckNonNegative("projection_shift_trunk_share", projection_shift_trunk_share);
+  CheckNonNegative("projection_min_shift_m", projection_min_shift_m);
+  CheckPositive("skeleton_input_voxel_factor", skeleton_input_voxel_factor);
+  CheckNonNegative("skeleton_radius_factor", skeleton_radius_factor);
+  CheckPositive("coarse_voxel_factor", coarse_voxel_factor);
+  CheckPositive("feature_normal_factor", feature_normal_factor);
+  CheckPositive("feature_radius_factor", feature_radius_factor);
+}
+
 RegistrationView PrepareView(const std::string& name,
                              const preprocessing::PreprocessResult& preprocessed,
                              const RegistrationViewOptions& options) {
+  options.Validate();
   const auto start = std::chrono::steady_clock::now();
   RegistrationView view;
   view.name = name;
@@ -194,6 +222,24 @@ RegistrationView PrepareView(const std::string& name,
   }
   view.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return view;
+}
+
+std::vector<RegistrationView> PrepareViews(
+    const std::vector<preprocessing::PreprocessedView>& preprocessed,
+    const RegistrationViewOptions& options) {
+  options.Validate();
+  std::vector<RegistrationView> views(preprocessed.size());
+  Progress progress("prepare", static_cast<int64_t>(views.size()), "views");
+  oneapi::tbb::parallel_for(size_t{0}, views.size(), [&](size_t v) {
+    if (preprocessed[v].result) {
+      views[v] = PrepareView(preprocessed[v].name, *preprocessed[v].result, options);
+    } else {
+      views[v].name = preprocessed[v].name;
+      views[v].failure = preprocessed[v].failure;
+    }
+    progress.Advance();
+  });
+  return views;
 }
 
 }  // namespace simtree::registration

@@ -7,12 +7,14 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <open3d/geometry/KDTreeFlann.h>
 #include <open3d/geometry/PointCloud.h>
 #include <open3d/pipelines/registration/Feature.h>
 #include <Eigen/Core>
 
+#include "simtree/preprocessing/preprocess.h"
 #include "simtree/preprocessing/preprocess_view.h"
 #include "simtree/registration/detail/l1_medial_skeleton.h"
 #include "simtree/registration/detail/medial_projection.h"
@@ -32,30 +34,38 @@ const char* ToString(CoarseInput input);
 CoarseInput ParseCoarseInput(const std::string& name);
 
 struct RegistrationViewOptions {
-  CoarseInput coarse_input = CoarseInput::kKeyRegionSkeleton;
-  // Normals of the view: radius `normal_radius_factor` times the point spacing.
-  double normal_radius_factor = 3.0;
-  int normal_max_neighbors = 30;
-  TrunkOptions trunk;
-  CylinderFitOptions cylinder;
-  KeyRegionOptions key_region;
-  SkeletonOptions skeleton;
-  // Move points onto their branch axes before the skeleton (medial_projection.h); the
-  // neighbourhood is at least `projection_radius_factor` point spacings. Branches narrower than
-  // the neighbourhood take their axis points from their silhouettes (round 7): the normal lines'
-  // sat 5-10 mm towards the camera on 1-4 cm branches.
+  CoarseInput coarse_input = CoarseInput::kKeyRegionSkeleton;  // what coarse registration aligns
+  double normal_radius_factor = 3.0;  // point spacings, > 0: the normals' neighbourhood radius
+  int normal_max_neighbors = 30;      // >= 1: the normals' neighbours
+  TrunkOptions trunk;                 // the trunk and its first fork (trunk.h)
+  CylinderFitOptions cylinder;        // the trunk's cylinder
+  KeyRegionOptions key_region;        // the sphere around the fork
+  // The L1-medial skeleton; its initial_radius_m is the least initial neighbourhood, raised to
+  // skeleton_radius_factor point spacings.
+  SkeletonOptions skeleton{.initial_radius_m = 0.04};
+  // The skeleton is built from the view's points moved onto their branch axes (true) or from the
+  // points themselves (false). The axis points are computed either way: the fine stage aligns
+  // them (PairOptions::medial).
   bool medial_projection = true;
+  // The projection onto the branch axes. Its neighbourhood_m is the least neighbourhood, raised to
+  // projection_radius_factor point spacings; its max_shift_m holds for a view without a trunk
+  // (with one: projection_shift_trunk_share of the trunk's visible width, at least
+  // projection_min_shift_m). Branches narrower than the neighbourhood take their axis points
+  // from their silhouettes (`silhouette`): the normal lines' meeting points sit towards the
+  // camera on thin branches.
   MedialProjectionOptions projection{.silhouette = true};
-  double projection_radius_factor = 4.0;
-  // The projected points are thinned to one per voxel of this many point spacings.
-  double skeleton_input_voxel_factor = 1.0;
-  // The skeleton's initial neighbourhood h: this many point spacings (at least 4 cm).
-  double skeleton_radius_factor = 4.0;
-  // Point inputs (entire tree, key region) are downsampled to this many point spacings first.
-  double coarse_voxel_factor = 2.0;
-  // Normals and FPFH of the coarse points: radii in multiples of the coarse points' spacing.
+  double projection_radius_factor = 4.0;      // point spacings, >= 0
+  double projection_shift_trunk_share = 0.6;  // of the trunk's visible width, >= 0
+  double projection_min_shift_m = 0.05;       // m, >= 0
+  double skeleton_input_voxel_factor = 1.0;   // point spacings, > 0: axis points thinned to this
+  double skeleton_radius_factor = 4.0;        // point spacings, >= 0: the skeleton's initial h
+  double coarse_voxel_factor = 2.0;  // point spacings, > 0: point inputs downsampled to this
+  // Coarse points' spacings, > 0: the radii of their normals and of their FPFH features.
   double feature_normal_factor = 3.0;
   double feature_radius_factor = 8.0;
+
+  // Throws InputError naming the field of a nonsense value (trunk.slice_height_m, ...).
+  void Validate() const;
 };
 
 struct RegistrationView {
@@ -104,9 +114,16 @@ std::optional<Eigen::Vector3d> TrunkPointAtHeight(const RegistrationView& view, 
                                                   bool use_ground);
 
 // Prepares a preprocessed view (PreprocessView's cloud, up and ground). Never throws for a view
-// that merely lacks a trunk: `failure` says so and the view's pairs are flagged.
+// that merely lacks a trunk: `failure` says so and the view's pairs are flagged. Throws
+// InputError for nonsense options.
 RegistrationView PrepareView(const std::string& name,
                              const preprocessing::PreprocessResult& preprocessed,
                              const RegistrationViewOptions& options = {});
+
+// Every view of a capture prepared (in parallel, with progress); a view that failed in
+// preprocessing keeps its failure.
+std::vector<RegistrationView> PrepareViews(
+    const std::vector<preprocessing::PreprocessedView>& preprocessed,
+    const RegistrationViewOptions& options = {});
 
 }  // namespace simtree::registration

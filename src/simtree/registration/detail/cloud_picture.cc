@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "simtree/core/error.h"
+#include "simtree/preprocessing/detail/option_checks.h"
 
 namespace simtree::registration {
 namespace {
@@ -63,7 +64,18 @@ std::array<uint8_t, 3> ViewColor(int index) {
   return kPalette[static_cast<size_t>(std::abs(index)) % kPalette.size()];
 }
 
+void PictureOptions::Validate() const {
+  using namespace preprocessing;
+  CheckAtLeast("panel_width", panel_width, 64);
+  CheckAtLeast("side_height", side_height, 64);
+  CheckAtLeast("top_height", top_height, 64);
+  if (!(side_direction.head<2>().norm() > 0)) {
+    throw OptionError("side_direction", "expected a horizontal direction (x or y not 0)");
+  }
+}
+
 RgbImage DrawPanels(const std::vector<PicturePanel>& panels, const PictureOptions& options) {
+  options.Validate();
   if (panels.empty()) throw InputError("<memory>", "picture", "expected at least one panel");
   const Eigen::Vector3d depth =
       Eigen::Vector3d(options.side_direction.x(), options.side_direction.y(), 0).normalized();

@@ -26,15 +26,18 @@ struct PicturePanel {
 };
 
 struct PictureOptions {
-  int panel_width = 560;  // each panel is a side view over a top view
-  int side_height = 560;
-  int top_height = 420;
-  // The side view looks along this horizontal direction (unit, z = 0).
+  int panel_width = 560;  // px, >= 64: each panel is a side view over a top view
+  int side_height = 560;  // px, >= 64
+  int top_height = 420;   // px, >= 64
+  // The side view looks along this horizontal direction (unit, z = 0; z is dropped).
   Eigen::Vector3d side_direction = Eigen::Vector3d::UnitY();
   // Share the scale and centre of all panels (the last panel's bounds), so they compare.
   bool common_scale = true;
   // A band under the panels naming the colours.
   std::vector<std::pair<std::string, std::array<uint8_t, 3>>> legend;
+
+  // Throws InputError naming the field of a nonsense value.
+  void Validate() const;
 };
 
 // Distinct colours for up to 12 views (then they repeat).

@@ -11,6 +11,8 @@
 #include <oneapi/tbb/parallel_reduce.h>
 #include <Eigen/SVD>
 
+#include "simtree/preprocessing/detail/option_checks.h"
+
 namespace simtree::registration {
 namespace {
 
@@ -100,12 +102,32 @@ void AddPlane(const PlaneConstraint& plane, const Eigen::Isometry3d& transform, 
 
 }  // namespace
 
+void GatedIcpOptions::Validate() const {
+  using namespace preprocessing;
+  CheckPositiveList("max_distances_m", max_distances_m, false);
+  CheckAtLeast("iterations_per_stage", iterations_per_stage, 1);
+  CheckRange("max_normal_angle_deg", max_normal_angle_deg, 0.0, 180.0);
+  CheckNonNegative("huber_share", huber_share);
+  CheckShare("min_planarity", min_planarity);
+  CheckNonNegative("min_rotation_step", min_rotation_step);
+  CheckNonNegative("min_translation_step", min_translation_step);
+}
+
+void MedialShiftOptions::Validate() const {
+  using namespace preprocessing;
+  CheckPositiveList("max_distances_m", max_distances_m, false);
+  CheckAtLeast("iterations_per_stage", iterations_per_stage, 1);
+  CheckNonNegative("min_step_m", min_step_m);
+  CheckAtLeast("min_matches", min_matches, 3);
+}
+
 IcpResult GatedPointToPlaneIcp(const PointCloud& source, const PointCloud& target,
                                const KDTreeFlann& target_tree, const Eigen::Isometry3d& initial,
                                const GatedIcpOptions& options,
                                const std::vector<float>* source_planarity,
                                const std::vector<float>* target_planarity,
                                const IcpPriors& priors) {
+  options.Validate();
   const auto start = std::chrono::steady_clock::now();
   IcpResult result;
   result.target_from_source = initial;
@@ -209,6 +231,7 @@ IcpResult GatedPointToPlaneIcp(const PointCloud& source, const PointCloud& targe
 MedialShiftResult AlignMedialAxes(const PointCloud& source_medial, const PointCloud& target_medial,
                                   const KDTreeFlann& target_tree, const Eigen::Isometry3d& initial,
                                   const MedialShiftOptions& options) {
+  options.Validate();
   MedialShiftResult result;
   result.target_from_source = initial;
   if (source_medial.points_.empty() || target_medial.points_.empty()) return result;

@@ -7,9 +7,9 @@
 // them together (NOTES.md: ~47 mm of drift at 180 degrees even when started at the true pose).
 // Normals are oriented towards each view's camera, so a front and a back disagree by more than
 // the gate and never pair. Open3D's ICP has no such gate, hence this implementation.
-// (Measured since on synthetic captures: the gate keeps mostly grazing pairs, whose pull is the
-// most biased, so pairwise registration now runs without it and undoes the shells' pull with
-// AlignMedialAxes instead; docs/benchmarks.md, "The fine stage isolated".)
+// Pairwise registration (pairwise.h) runs it without the gate by default: the gate keeps mostly
+// grazing correspondences, whose pull is the most biased, and AlignMedialAxes below undoes the
+// shells' pull instead (docs/registration.md).
 
 #include <optional>
 #include <vector>
@@ -31,21 +31,22 @@ enum class IcpObjective {
 };
 
 struct GatedIcpOptions {
-  IcpObjective objective = IcpObjective::kPointToPlane;
-  // One stage per distance (metres), largest first; each runs up to `iterations_per_stage`.
+  IcpObjective objective = IcpObjective::kPointToPlane;  // what a residual is measured along
+  // m, each > 0, largest first: one stage per distance, each up to `iterations_per_stage`.
   std::vector<double> max_distances_m = {0.06, 0.03, 0.015};
-  int iterations_per_stage = 12;
-  double max_normal_angle_deg = 45.0;
-  // Residuals beyond this share of the stage distance are down-weighted (Huber); 0: not at all.
+  int iterations_per_stage = 12;       // >= 1
+  double max_normal_angle_deg = 45.0;  // deg, [0, 180]: the normal gate (180: none)
+  // >= 0: residuals beyond this share of the stage distance are down-weighted (Huber; 0: none).
   double huber_share = 1.0 / 3.0;
-  // Points whose neighbourhood is less plane-like than this (twigs, noise) are left out.
+  // [0, 1]: points whose neighbourhood is less plane-like than this (twigs, noise) take no part.
   double min_planarity = 0.0;
-  // Stop a stage when an update moves by less than this (radians, metres).
-  double min_rotation_step = 2e-5;
-  double min_translation_step = 2e-5;
-  // Source points used (a seeded, spatially even sample); 0: all.
-  size_t max_source_points = 6000;
-  uint64_t seed = 1;
+  double min_rotation_step = 2e-5;     // rad, >= 0: a stage stops at a smaller update
+  double min_translation_step = 2e-5;  // m, >= 0: a stage stops at a smaller update
+  size_t max_source_points = 6000;  // source points used (a seeded, spatially even sample; 0: all)
+  uint64_t seed = 1;                // of the sample
+
+  // Throws InputError naming the field of a nonsense value.
+  void Validate() const;
 };
 
 struct IcpResult {
@@ -100,18 +101,19 @@ IcpResult GatedPointToPlaneIcp(
 // move, that brings the source's medial points (registration_view.h) onto the target's. Surface
 // ICP cannot find it when the views are far apart: each sees its own half of every branch, the
 // halves barely overlap (grazing surfaces drop out), and ICP pulls the two shells together,
-// moving the source towards the target camera by about half a branch radius (measured: 15-30 mm
-// at 144-180 deg), the thick lower branches more than the twigs (a lean). The branch axes both
-// views agree on.
+// moving the source towards the target camera by about half a branch radius, the thick lower
+// branches more than the twigs (a lean). The branch axes both views agree on.
 struct MedialShiftOptions {
-  // One stage per distance (metres), largest first; each runs up to `iterations_per_stage`.
+  // m, each > 0, largest first: one stage per distance, each up to `iterations_per_stage`.
   std::vector<double> max_distances_m = {0.04, 0.02};
-  int iterations_per_stage = 10;
-  double min_step_m = 1e-4;
-  // The shift is rejected (the start kept) unless at least this many source points match.
-  int min_matches = 30;
+  int iterations_per_stage = 10;  // >= 1
+  double min_step_m = 1e-4;       // m (and rad), >= 0: a stage stops at a smaller step
+  int min_matches = 30;           // >= 3: with fewer matched source points the start is kept
   // Fit the rotation too (a rigid, point-to-point fit of the medial points; Huber-weighted).
   bool rotation = false;
+
+  // Throws InputError naming the field of a nonsense value.
+  void Validate() const;
 };
 struct MedialShiftResult {
   Eigen::Isometry3d target_from_source = Eigen::Isometry3d::Identity();

@@ -10,6 +10,8 @@
 #include <open3d/geometry/PointCloud.h>
 #include <Eigen/Eigenvalues>
 
+#include "simtree/preprocessing/detail/option_checks.h"
+
 namespace simtree::registration {
 namespace {
 
@@ -33,8 +35,23 @@ double Directionality(const std::vector<Eigen::Vector3d>& x, size_t i, const std
 
 }  // namespace
 
+void SkeletonOptions::Validate() const {
+  using namespace preprocessing;
+  CheckShare("sample_share", sample_share);
+  CheckAtLeast("max_points", max_points, 1);
+  CheckAtLeast("min_points", min_points, 1);
+  CheckOrdered("min_points", min_points, "max_points", max_points);
+  CheckPositive("initial_radius_m", initial_radius_m);
+  CheckAtLeast("radius_growth", radius_growth, 1.0);
+  CheckAtLeast("rounds", rounds, 1);
+  CheckAtLeast("iterations_per_round", iterations_per_round, 1);
+  CheckRange("repulsion_mu", repulsion_mu, 0.0, 0.5);
+  CheckNonNegative("merge_share", merge_share);
+}
+
 Skeleton L1MedialSkeleton(const std::vector<Eigen::Vector3d>& input,
                           const SkeletonOptions& options) {
+  options.Validate();
   Skeleton skeleton;
   if (input.empty()) return skeleton;
   open3d::geometry::PointCloud q_cloud;

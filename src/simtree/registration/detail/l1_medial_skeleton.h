@@ -25,20 +25,22 @@
 namespace simtree::registration {
 
 struct SkeletonOptions {
-  // Initial skeleton points: a seeded sample of the input, `sample_share` of it, at most
-  // `max_points`.
-  double sample_share = 0.08;
-  int max_points = 1200;
-  int min_points = 20;
+  // Initial skeleton points: a seeded sample of the input, `sample_share` of it, within
+  // [min_points, max_points].
+  double sample_share = 0.08;  // [0, 1]
+  int max_points = 1200;       // >= 1
+  int min_points = 20;         // >= 1, <= max_points
   // Neighbourhood h: starts at `initial_radius_m` and grows by `radius_growth` times per round.
-  double initial_radius_m = 0.06;
-  double radius_growth = 1.35;
-  int rounds = 3;
-  int iterations_per_round = 6;
-  double repulsion_mu = 0.35;  // Huang et al.: mu in [0, 1/2)
-  // Skeleton points closer than this share of the final h are merged.
-  double merge_share = 0.2;
-  uint64_t seed = 1;
+  double initial_radius_m = 0.06;  // m, > 0
+  double radius_growth = 1.35;     // >= 1
+  int rounds = 3;                  // >= 1
+  int iterations_per_round = 6;    // >= 1
+  double repulsion_mu = 0.35;      // [0, 0.5]: Huang et al.'s mu, in [0, 1/2)
+  double merge_share = 0.2;        // >= 0: points closer than this share of the final h are merged
+  uint64_t seed = 1;               // of the initial sample
+
+  // Throws InputError naming the field of a nonsense value.
+  void Validate() const;
 };
 
 struct Skeleton {

@@ -8,6 +8,8 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
+#include "simtree/preprocessing/detail/option_checks.h"
+
 namespace simtree::registration {
 namespace {
 
@@ -58,10 +60,22 @@ std::optional<Eigen::Vector3d> SilhouetteAxisPoint(const open3d::geometry::Point
 
 }  // namespace
 
+void MedialProjectionOptions::Validate() const {
+  using namespace preprocessing;
+  CheckPositive("neighbourhood_m", neighbourhood_m);
+  CheckAtLeast("max_neighbours", max_neighbours, 2);
+  CheckNonNegative("max_shift_m", max_shift_m);
+  CheckNonNegative("regularisation", regularisation);
+  CheckPositive("silhouette_elongation", silhouette_elongation);
+  CheckShare("silhouette_containment", silhouette_containment);
+  CheckAtLeast("silhouette_max_neighbours", silhouette_max_neighbours, 2);
+}
+
 std::vector<Eigen::Vector3d> ProjectToMedialAxes(const open3d::geometry::PointCloud& cloud,
                                                  const open3d::geometry::KDTreeFlann& tree,
                                                  const std::vector<size_t>& indices,
                                                  const MedialProjectionOptions& options) {
+  options.Validate();
   std::vector<Eigen::Vector3d> projected(indices.size());
   if (!cloud.HasNormals()) {
     for (size_t k = 0; k < indices.size(); ++k) projected[k] = cloud.points_[indices[k]];

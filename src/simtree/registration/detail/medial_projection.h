@@ -17,11 +17,12 @@
 namespace simtree::registration {
 
 struct MedialProjectionOptions {
-  double neighbourhood_m = 0.08;  // radius of the neighbourhood whose normal lines are used
-  int max_neighbours = 40;
-  double max_shift_m = 0.15;  // no point moves further (about the thickest branch's radius)
-  // Pull towards the point itself, relative to the neighbour count: keeps flat patches (whose
-  // normal lines are parallel and meet nowhere) in place.
+  double neighbourhood_m = 0.08;  // m, > 0: radius of the neighbourhood whose normal lines meet
+  int max_neighbours = 40;        // >= 2: neighbours whose normal lines are used
+  double max_shift_m =
+      0.15;  // m, >= 0: no point moves further (about the thickest branch's radius)
+  // >= 0, relative to the neighbour count: the pull towards the point itself, which keeps flat
+  // patches (whose normal lines are parallel and meet nowhere) in place.
   double regularisation = 0.005;
   // A branch narrower than the neighbourhood is long (across its axis at most
   // `silhouette_elongation` of the extent along it, and the points on both its edges, in the
@@ -31,13 +32,15 @@ struct MedialProjectionOptions {
   // view sees whole, gives the radius r and the axis's place across; the axis lies r behind the
   // surface point there, less for a point off the middle (a circle). The normal lines' meeting
   // point lags on such branches: normals averaged over a neighbourhood wider than the branch turn
-  // towards the camera, so their lines barely meet and the pull towards the point itself wins
-  // (each view's axis points of 1-4 cm branches sat 5-10 mm towards its camera). Needs the
-  // camera at the cloud's origin. False: the normal lines everywhere.
+  // towards the camera, so their lines barely meet and the pull towards the point itself wins.
+  // Needs the camera at the cloud's origin. False: the normal lines everywhere.
   bool silhouette = false;
-  double silhouette_elongation = 0.5;
-  double silhouette_containment = 0.6;
-  int silhouette_max_neighbours = 120;
+  double silhouette_elongation = 0.5;   // > 0: width over length of a branch's neighbourhood
+  double silhouette_containment = 0.6;  // [0, 1] of the neighbourhood's radius
+  int silhouette_max_neighbours = 120;  // >= 2: neighbours the silhouette is measured on
+
+  // Throws InputError naming the field of a nonsense value.
+  void Validate() const;
 };
 
 // The projected positions of `indices` of `cloud` (which needs normals oriented to the camera);

@@ -11,6 +11,8 @@
 
 #include <fmt/format.h>
 
+#include "simtree/preprocessing/detail/option_checks.h"
+
 namespace simtree::registration {
 namespace {
 
@@ -218,6 +220,11 @@ void CheckPair(const RegistrationView& source, const RegistrationView& target,
                const PairOptions& options, PairResult& result) {
   const Eigen::Isometry3d& t = result.target_from_source;
   std::vector<std::string> problems;
+  result.failed_checks.clear();
+  auto fail = [&](PairCheck check, std::string problem) {
+    result.failed_checks.push_back(check);
+    problems.push_back(std::move(problem));
+  };
   result.up_disagreement_deg = kNaN;
   result.ground_offset_m = kNaN;
   result.trunk_offset_m = kNaN;
@@ -225,8 +232,9 @@ void CheckPair(const RegistrationView& source, const RegistrationView& target,
     result.up_disagreement_deg =
         AngleDeg(t.linear() * source.ground->normal, target.ground->normal);
     if (options.check_ground && result.up_disagreement_deg > options.max_up_disagreement_deg) {
-      problems.push_back(fmt::format("the grounds tilt {:.1f} deg apart (at most {:.1f})",
-                                     result.up_disagreement_deg, options.max_up_disagreement_deg));
+      fail(PairCheck::kGroundTilt,
+           fmt::format("the grounds tilt {:.1f} deg apart (at most {:.1f})",
+                       result.up_disagreement_deg, options.max_up_disagreement_deg));
     }
     // The source ground at its trunk's foot (or below its cloud's centre), in the target frame,
     // against the target ground: near the tree both views see the same patch.
@@ -236,9 +244,9 @@ void CheckPair(const RegistrationView& source, const RegistrationView& target,
     on_source -= source.ground->SignedDistance(on_source) * source.ground->normal;
     result.ground_offset_m = std::abs(target.ground->SignedDistance(t * on_source));
     if (options.check_ground && result.ground_offset_m > options.max_ground_offset_m) {
-      problems.push_back(fmt::format("the grounds are {:.0f} mm apart (at most {:.0f})",
-                                     1e3 * result.ground_offset_m,
-                                     1e3 * options.max_ground_offset_m));
+      fail(PairCheck::kGroundOffset,
+           fmt::format("the grounds are {:.0f} mm apart (at most {:.0f})",
+                       1e3 * result.ground_offset_m, 1e3 * options.max_ground_offset_m));
     }
   }
   if (source.trunk && target.trunk && source.trunk->cylinder && target.trunk->cylinder) {
@@ -246,20 +254,21 @@ void CheckPair(const RegistrationView& source, const RegistrationView& target,
     const TrunkCylinder& b = *target.trunk->cylinder;
     const double tilt = AngleDeg(t.linear() * a.axis, b.axis);
     if (tilt > options.max_cylinder_tilt_deg) {
-      problems.push_back(fmt::format("the trunk cylinders tilt {:.1f} deg apart (at most {:.1f})",
-                                     tilt, options.max_cylinder_tilt_deg));
+      fail(PairCheck::kCylinderTilt,
+           fmt::format("the trunk cylinders tilt {:.1f} deg apart (at most {:.1f})", tilt,
+                       options.max_cylinder_tilt_deg));
     }
     result.trunk_offset_m = LineOffsetAt(b.point, b.axis, t * a.point);
     if (result.trunk_offset_m > options.max_cylinder_offset_m) {
-      problems.push_back(fmt::format("the trunk cylinders are {:.0f} mm apart (at most {:.0f})",
-                                     1e3 * result.trunk_offset_m,
-                                     1e3 * options.max_cylinder_offset_m));
+      fail(PairCheck::kCylinderOffset,
+           fmt::format("the trunk cylinders are {:.0f} mm apart (at most {:.0f})",
+                       1e3 * result.trunk_offset_m, 1e3 * options.max_cylinder_offset_m));
     }
   } else if (source.trunk && target.trunk) {
     const double tilt = AngleDeg(t.linear() * source.trunk->axis, target.trunk->axis);
     if (tilt > options.max_trunk_tilt_deg) {
-      problems.push_back(fmt::format("the trunks tilt {:.1f} deg apart (at most {:.1f})", tilt,
-                                     options.max_trunk_tilt_deg));
+      fail(PairCheck::kTrunkTilt, fmt::format("the trunks tilt {:.1f} deg apart (at most {:.1f})",
+                                              tilt, options.max_trunk_tilt_deg));
     }
     result.trunk_offset_m =
         LineOffsetAt(t * source.trunk->branch_point, t.linear() * source.trunk->axis,
@@ -268,14 +277,15 @@ void CheckPair(const RegistrationView& source, const RegistrationView& target,
         std::max(0.05, options.max_trunk_offset_factor *
                            std::max(source.trunk->visible_width_m, target.trunk->visible_width_m));
     if (result.trunk_offset_m > limit) {
-      problems.push_back(fmt::format("the trunks are {:.0f} mm apart (at most {:.0f})",
-                                     1e3 * result.trunk_offset_m, 1e3 * limit));
+      fail(PairCheck::kTrunkOffset, fmt::format("the trunks are {:.0f} mm apart (at most {:.0f})",
+                                                1e3 * result.trunk_offset_m, 1e3 * limit));
     }
   }
   if (result.coarse_overlap < options.min_coarse_overlap) {
-    problems.push_back(fmt::format("only {:.0f}% of the {} matches (at least {:.0f}%)",
-                                   100 * result.coarse_overlap, ToString(source.coarse_input),
-                                   100 * options.min_coarse_overlap));
+    fail(PairCheck::kCoarseOverlap,
+         fmt::format("only {:.0f}% of the {} matches (at least {:.0f}%)",
+                     100 * result.coarse_overlap, ToString(source.coarse_input),
+                     100 * options.min_coarse_overlap));
   }
   // The whole view, crown included: what tells a tree turned about its trunk from a right pair
   // when the trunk and the key region's skeleton look alike from every side.
@@ -286,13 +296,14 @@ void CheckPair(const RegistrationView& source, const RegistrationView& target,
     result.view_overlap =
         MeasureOverlap(*source.cloud, *target.cloud, *target.cloud_tree, t, last).share;
     if (result.view_overlap < options.min_fitness) {
-      problems.push_back(fmt::format("only {:.0f}% of points overlap (at least {:.0f}%)",
-                                     100 * result.view_overlap, 100 * options.min_fitness));
+      fail(PairCheck::kViewOverlap,
+           fmt::format("only {:.0f}% of points overlap (at least {:.0f}%)",
+                       100 * result.view_overlap, 100 * options.min_fitness));
     }
   }
-  result.ok = problems.empty();
-  if (result.ok) {
-    result.status = "ok";
+  result.outcome = problems.empty() ? PairOutcome::kOk : PairOutcome::kFailedChecks;
+  if (result.ok()) {
+    result.status = ToString(result.outcome);
   } else {
     result.status = problems.front();
     for (size_t i = 1; i < problems.size(); ++i) result.status += "; " + problems[i];
@@ -301,6 +312,7 @@ void CheckPair(const RegistrationView& source, const RegistrationView& target,
 
 FineResult RefinePair(const RegistrationView& source, const RegistrationView& target,
                       const Eigen::Isometry3d& initial, const PairOptions& options) {
+  options.Validate();
   FineResult result;
   if (!source.cloud || !target.cloud) {
     result.icp.target_from_source = initial;
@@ -417,12 +429,14 @@ FineResult AverageWithReverseOnce(const RegistrationView& source, const Registra
 
 FineResult AverageWithReverse(const RegistrationView& source, const RegistrationView& target,
                               const FineResult& forward, const PairOptions& options) {
+  options.Validate();
   return AverageWithReverseOnce(source, target, forward, options, true);
 }
 
 TurnedFineResult RefineWithTurns(const RegistrationView& source, const RegistrationView& target,
                                  const Eigen::Isometry3d& initial, const PairOptions& options,
                                  const std::vector<double>& shifts_m, int refinements) {
+  options.Validate();
   TurnedFineResult result;
   result.fine = RefinePair(source, target, initial, options);
   if (!target.trunk) return result;
@@ -445,43 +459,40 @@ TurnedFineResult RefineWithTurns(const RegistrationView& source, const Registrat
 
 namespace {
 
-PairResult RegisterPairOnce(const RegistrationView& source, const RegistrationView& target,
-                            const PairOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  PairResult result;
-  result.source = source.name;
-  result.target = target.name;
-  result.own_key_regions = options.own_key_regions;
-  for (const RegistrationView* view : {&source, &target}) {
-    if (!view->CanRegister()) {
-      result.status = fmt::format("{}: {}", view->name, view->failure);
-      return result;
-    }
-  }
+double SecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
-  // What coarse registration aligns: the coarse points inside the pair's key regions, or all.
+// The key regions whose coarse points a pair aligns: none for a coarse input without key regions
+// (every coarse point), else the shared regions or each view's own (own_key_regions).
+struct PairRegions {
   std::optional<SharedKeyRegion> shared;
-  if (UsesKeyRegion(source.coarse_input) && options.own_key_regions) {
-    if (source.key_region && target.key_region) {
-      // One radius, as SharedKeyRegions takes: the spheres hold the same share of the tree.
-      const double radius = std::max(source.key_region->radius_m, target.key_region->radius_m);
-      shared = SharedKeyRegion{KeyRegion{source.key_region->center, radius},
-                               KeyRegion{target.key_region->center, radius}, kNaN};
-    }
-    if (!shared) {
-      result.status = "no key region in both views";
-      return result;
-    }
-  } else if (UsesKeyRegion(source.coarse_input)) {
-    shared = SharedKeyRegions(source, target);
-    if (!shared) {
-      result.status = "no key region shared by both views (a trunk axis lies flat)";
-      return result;
-    }
-  }
-  const CoarseSubset source_coarse = SelectCoarse(source, shared ? &shared->source : nullptr);
-  const CoarseSubset target_coarse = SelectCoarse(target, shared ? &shared->target : nullptr);
+  PairOutcome failure = PairOutcome::kNotRun;  // kNoKeyRegion or kNoSharedKeyRegion: none found
+};
 
+PairRegions ChooseKeyRegions(const RegistrationView& source, const RegistrationView& target,
+                             const PairOptions& options) {
+  PairRegions regions;
+  if (!UsesKeyRegion(source.coarse_input)) return regions;
+  if (!options.own_key_regions) {
+    regions.shared = SharedKeyRegions(source, target);
+    if (!regions.shared) regions.failure = PairOutcome::kNoSharedKeyRegion;
+    return regions;
+  }
+  if (!source.key_region || !target.key_region) {
+    regions.failure = PairOutcome::kNoKeyRegion;
+    return regions;
+  }
+  // One radius, as SharedKeyRegions takes: the spheres hold the same share of the tree.
+  const double radius = std::max(source.key_region->radius_m, target.key_region->radius_m);
+  regions.shared = SharedKeyRegion{KeyRegion{source.key_region->center, radius},
+                                   KeyRegion{target.key_region->center, radius}, kNaN};
+  return regions;
+}
+
+// What both views know besides their coarse points, for SAC-IA.
+SacIaPrior CoarsePrior(const RegistrationView& source, const RegistrationView& target,
+                       const std::optional<SharedKeyRegion>& shared, const PairOptions& options) {
   SacIaPrior prior;
   if (options.up_prior) {
     // One physical direction seen from both views: the trunk's axis (or, when asked, the
@@ -499,13 +510,61 @@ PairResult RegisterPairOnce(const RegistrationView& source, const RegistrationVi
     prior.target_center = shared->target.center;
     prior.max_center_offset_m = options.max_center_offset_share * shared->source.radius_m;
   }
-  result.coarse = SampleConsensusInitialAlignment(source_coarse.points, source_coarse.features,
-                                                  target_coarse.points, target_coarse.features,
-                                                  prior, options.sac_ia);
+  return prior;
+}
+
+// The fine stage from the coarse result in `result`, the turn screen included: its pose and
+// what it measured go into `result`.
+void RefineCoarseResult(const RegistrationView& source, const RegistrationView& target,
+                        const std::optional<SharedKeyRegion>& shared, const PairOptions& options,
+                        PairResult& result) {
+  const TurnedFineResult turned =
+      RefineWithTurns(source, target, result.target_from_source, options,
+                      ScreenShifts(source, target, shared ? shared->source.radius_m : 0.0, options),
+                      options.screen_shift_share > 0 ? options.shifted_refinements : -1);
+  const FineResult& fine = turned.fine;
+  result.turned_deg = turned.turned_deg;
+  result.shifted_m = turned.shifted_m;
+  result.medial_shift_m = fine.medial_shift.norm();
+  result.reverse_gap_m = fine.reverse_gap_m;
+  result.fine = fine.icp;
+  result.trunk_constraint = fine.trunk_constraint;
+  result.ground_constraint = fine.ground_constraint;
+  result.target_from_source = fine.icp.target_from_source;
+}
+
+// One attempt: key regions, coarse (SAC-IA, snapped to the priors), fine with the turn screen,
+// then the paper's columns and the checks.
+PairResult RegisterPairOnce(const RegistrationView& source, const RegistrationView& target,
+                            const PairOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  PairResult result;
+  result.source = source.name;
+  result.target = target.name;
+  result.own_key_regions = options.own_key_regions;
+  for (const RegistrationView* view : {&source, &target}) {
+    if (!view->CanRegister()) {
+      result.outcome = PairOutcome::kViewCannotRegister;
+      result.status = fmt::format("{}: {}", view->name, view->failure);
+      return result;
+    }
+  }
+  const PairRegions regions = ChooseKeyRegions(source, target, options);
+  if (regions.failure != PairOutcome::kNotRun) {
+    result.outcome = regions.failure;
+    result.status = ToString(result.outcome);
+    return result;
+  }
+  const std::optional<SharedKeyRegion>& shared = regions.shared;
+  const CoarseSubset source_coarse = SelectCoarse(source, shared ? &shared->source : nullptr);
+  const CoarseSubset target_coarse = SelectCoarse(target, shared ? &shared->target : nullptr);
+  result.coarse = SampleConsensusInitialAlignment(
+      source_coarse.points, source_coarse.features, target_coarse.points, target_coarse.features,
+      CoarsePrior(source, target, shared, options), options.sac_ia);
   if (!result.coarse.found) {
-    result.status = "coarse registration found no consistent correspondences";
-    result.seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    result.outcome = PairOutcome::kNoCoarseResult;
+    result.status = ToString(result.outcome);
+    result.seconds = SecondsSince(start);
     return result;
   }
   if (options.snap_to_priors) {
@@ -513,22 +572,8 @@ PairResult RegisterPairOnce(const RegistrationView& source, const RegistrationVi
                                                     target, shared, options.ground_as_up);
   }
   result.target_from_source = result.coarse.target_from_source;
-  if (options.run_icp) {
-    const TurnedFineResult turned = RefineWithTurns(
-        source, target, result.target_from_source, options,
-        ScreenShifts(source, target, shared ? shared->source.radius_m : 0.0, options),
-        options.screen_shift_share > 0 ? options.shifted_refinements : -1);
-    const FineResult& fine = turned.fine;
-    result.turned_deg = turned.turned_deg;
-    result.shifted_m = turned.shifted_m;
-    result.medial_shift_m = fine.medial_shift.norm();
-    result.reverse_gap_m = fine.reverse_gap_m;
-    result.fine = fine.icp;
-    result.trunk_constraint = fine.trunk_constraint;
-    result.ground_constraint = fine.ground_constraint;
-    result.target_from_source = fine.icp.target_from_source;
-  }
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (options.run_icp) RefineCoarseResult(source, target, shared, options, result);
+  result.seconds = SecondsSince(start);
   result.coarse_overlap =
       CoarseOverlap(source_coarse.points, target_coarse.points, result.target_from_source,
                     options.sac_ia.inlier_distance_m);
@@ -541,7 +586,7 @@ PairResult RegisterPairOnce(const RegistrationView& source, const RegistrationVi
 
 // Keeps whichever of `result` and `retried` (found by `attempt`) overlaps more, charged with the
 // time of both.
-void KeepBetterOverlap(PairResult retried, const char* attempt, PairResult* result) {
+void KeepBetterOverlap(PairResult retried, PairAttempt attempt, PairResult* result) {
   retried.seconds += result->seconds;
   retried.attempt = attempt;
   if (retried.fine.fitness > result->fine.fitness) {
@@ -553,8 +598,101 @@ void KeepBetterOverlap(PairResult retried, const char* attempt, PairResult* resu
 
 }  // namespace
 
+const char* ToString(PairOutcome outcome) {
+  switch (outcome) {
+    case PairOutcome::kNotRun:
+      return "not registered";
+    case PairOutcome::kOk:
+      return "ok";
+    case PairOutcome::kViewCannotRegister:
+      return "a view cannot be registered";
+    case PairOutcome::kNoKeyRegion:
+      return "no key region in both views";
+    case PairOutcome::kNoSharedKeyRegion:
+      return "no key region shared by both views (a trunk axis lies flat)";
+    case PairOutcome::kNoCoarseResult:
+      return "coarse registration found no consistent correspondences";
+    case PairOutcome::kFailedChecks:
+      return "failed its checks";
+  }
+  return "?";
+}
+
+const char* ToString(PairCheck check) {
+  switch (check) {
+    case PairCheck::kGroundTilt:
+      return "ground tilt";
+    case PairCheck::kGroundOffset:
+      return "ground offset";
+    case PairCheck::kCylinderTilt:
+      return "trunk cylinder tilt";
+    case PairCheck::kCylinderOffset:
+      return "trunk cylinder offset";
+    case PairCheck::kTrunkTilt:
+      return "trunk tilt";
+    case PairCheck::kTrunkOffset:
+      return "trunk offset";
+    case PairCheck::kCoarseOverlap:
+      return "coarse overlap";
+    case PairCheck::kViewOverlap:
+      return "view overlap";
+  }
+  return "?";
+}
+
+const char* ToString(PairAttempt attempt) {
+  switch (attempt) {
+    case PairAttempt::kFirst:
+      return "first";
+    case PairAttempt::kOtherKeyRegions:
+      return "other key regions";
+    case PairAttempt::kShifts:
+      return "shifts";
+    case PairAttempt::kWithoutPriors:
+      return "without priors";
+  }
+  return "?";
+}
+
+void PairOptions::Validate() const {
+  using namespace preprocessing;
+  CheckNested("sac_ia", [&] { sac_ia.Validate(); });
+  CheckNested("icp", [&] { icp.Validate(); });
+  CheckNested("medial", [&] { medial.Validate(); });
+  CheckNonNegative("max_center_offset_share", max_center_offset_share);
+  CheckPositiveList("icp_distance_factors", icp_distance_factors, true);
+  CheckRange("turn_step_deg", turn_step_deg, 0.0, 360.0);
+  CheckNonNegative("turned_refinements", turned_refinements);
+  CheckAtLeast("turn_screen_iterations", turn_screen_iterations, 1);
+  CheckShare("screen_below_overlap", screen_below_overlap);
+  CheckNonNegative("screen_shift_share", screen_shift_share);
+  CheckNonNegative("screen_shift_step_factor", screen_shift_step_factor);
+  CheckNonNegative("shifted_refinements", shifted_refinements);
+  CheckNonNegative("retry_shift_share", retry_shift_share);
+  CheckPositiveList("medial_distance_factors", medial_distance_factors, true);
+  CheckNonNegative("max_reverse_disagreement_factor", max_reverse_disagreement_factor);
+  CheckNonNegative("trunk_axis_weight", trunk_axis_weight);
+  CheckNonNegative("ground_weight", ground_weight);
+  CheckNonNegative("ground_reach_m", ground_reach_m);
+  CheckPositive("match_distance_factor", match_distance_factor);
+  CheckShare("min_fitness", min_fitness);
+  CheckShare("min_fitness_without_priors", min_fitness_without_priors);
+  CheckRange("max_up_disagreement_deg", max_up_disagreement_deg, 0.0, 180.0);
+  CheckNonNegative("max_ground_offset_m", max_ground_offset_m);
+  CheckNonNegative("max_trunk_offset_factor", max_trunk_offset_factor);
+  CheckRange("max_trunk_tilt_deg", max_trunk_tilt_deg, 0.0, 180.0);
+  CheckRange("max_cylinder_tilt_deg", max_cylinder_tilt_deg, 0.0, 180.0);
+  CheckNonNegative("max_cylinder_offset_m", max_cylinder_offset_m);
+  CheckShare("min_coarse_overlap", min_coarse_overlap);
+  CheckRange("max_trunk_guard_tilt_deg", max_trunk_guard_tilt_deg, 0.0, 180.0);
+  CheckNonNegative("max_trunk_guard_offset_m", max_trunk_guard_offset_m);
+  CheckRange("max_ground_guard_tilt_deg", max_ground_guard_tilt_deg, 0.0, 180.0);
+  CheckNonNegative("max_ground_guard_offset_m", max_ground_guard_offset_m);
+}
+
 PairResult RegisterPair(const RegistrationView& source, const RegistrationView& target,
                         const PairOptions& options) {
+  options.Validate();
   PairResult result = RegisterPairOnce(source, target, options);
   // Key regions placed at different physical points (one view's ground or trunk base seen far
   // higher than the other's) make SAC-IA align different parts of the tree; the other choice
@@ -563,7 +701,8 @@ PairResult RegisterPair(const RegistrationView& source, const RegistrationView& 
       result.fine.fitness < options.min_fitness) {
     PairOptions other = options;
     other.own_key_regions = !options.own_key_regions;
-    KeepBetterOverlap(RegisterPairOnce(source, target, other), "other key regions", &result);
+    KeepBetterOverlap(RegisterPairOnce(source, target, other), PairAttempt::kOtherKeyRegions,
+                      &result);
   }
   // Both forks may be other branchings (a view that sees one arm of the first fork hidden behind
   // the other finds the next one up): SAC-IA then aligns the two forks, the source lands a
@@ -574,7 +713,7 @@ PairResult RegisterPair(const RegistrationView& source, const RegistrationView& 
     PairOptions shifted = options;
     shifted.screen_shift_share = options.retry_shift_share;
     shifted.own_key_regions = result.own_key_regions;
-    KeepBetterOverlap(RegisterPairOnce(source, target, shifted), "shifts", &result);
+    KeepBetterOverlap(RegisterPairOnce(source, target, shifted), PairAttempt::kShifts, &result);
   }
   // A trunk found wrong in one view (a stem beside it, a fork taken for the trunk) misleads the
   // up and centre priors and the snap in every turn; when the result overlaps too little to be
@@ -585,7 +724,8 @@ PairResult RegisterPair(const RegistrationView& source, const RegistrationView& 
     plain.up_prior = plain.center_prior = plain.snap_to_priors = false;
     plain.own_key_regions = result.own_key_regions;
     plain.min_fitness = std::max(options.min_fitness, options.min_fitness_without_priors);
-    KeepBetterOverlap(RegisterPairOnce(source, target, plain), "without priors", &result);
+    KeepBetterOverlap(RegisterPairOnce(source, target, plain), PairAttempt::kWithoutPriors,
+                      &result);
     result.retried_without_priors = true;
   }
   return result;

@@ -8,6 +8,8 @@
 #include <open3d/geometry/KDTreeFlann.h>
 #include <Eigen/Geometry>
 
+#include "simtree/preprocessing/detail/option_checks.h"
+
 namespace simtree::registration {
 namespace {
 
@@ -92,10 +94,22 @@ Eigen::Isometry3d FitRigid(const std::vector<Eigen::Vector3d>& from,
   return result;
 }
 
+void SacIaOptions::Validate() const {
+  using namespace preprocessing;
+  CheckAtLeast("iterations", iterations, 1);
+  CheckAtLeast("samples", samples, 2);
+  CheckAtLeast("feature_neighbors", feature_neighbors, 1);
+  CheckNonNegative("min_sample_distance_m", min_sample_distance_m);
+  CheckShare("edge_length_similarity", edge_length_similarity);
+  CheckPositive("inlier_distance_m", inlier_distance_m);
+  CheckNonNegative("refine_iterations", refine_iterations);
+}
+
 CoarseAlignment SampleConsensusInitialAlignment(
     const PointCloud& source, const open3d::pipelines::registration::Feature& source_features,
     const PointCloud& target, const open3d::pipelines::registration::Feature& target_features,
     const SacIaPrior& prior, const SacIaOptions& options) {
+  options.Validate();
   const auto start = std::chrono::steady_clock::now();
   CoarseAlignment best;
   const int ns = static_cast<int>(source.points_.size());

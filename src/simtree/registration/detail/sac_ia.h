@@ -20,19 +20,19 @@
 namespace simtree::registration {
 
 struct SacIaOptions {
-  int iterations = 4000;
-  int samples = 3;
-  // Each sample point picks at random among its `feature_neighbors` most similar target points.
-  int feature_neighbors = 4;
-  // Sample points are at least this far apart (a stable triangle).
-  double min_sample_distance_m = 0.08;
-  // Sample pairs whose edge lengths differ by more than this share are refused before fitting.
+  int iterations = 4000;      // hypotheses drawn, >= 1
+  int samples = 3;            // sample points per hypothesis, >= 2 (2 only fix a pose with up)
+  int feature_neighbors = 4;  // >= 1: each sample picks among this many most similar targets
+  double min_sample_distance_m = 0.08;  // m, >= 0: sample points this far apart (a stable triangle)
+  // [0, 1]: a sample whose matched edges' shorter length is below this share of the longer one
+  // is refused unfitted.
   double edge_length_similarity = 0.8;
-  // Distance at which a source point counts as matched; errors are truncated there.
-  double inlier_distance_m = 0.05;
-  // Iterations of closest-point refinement of the best hypothesis on the same points.
-  int refine_iterations = 15;
-  uint64_t seed = 1;
+  double inlier_distance_m = 0.05;  // m, > 0: a source point this close is matched; errors cut here
+  int refine_iterations = 15;       // >= 0: closest-point refinements of the best hypothesis
+  uint64_t seed = 1;                // of the draws
+
+  // Throws InputError naming the field of a nonsense value.
+  void Validate() const;
 };
 
 // What both views know besides their points (all in each view's own frame).

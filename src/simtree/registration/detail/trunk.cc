@@ -11,6 +11,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "simtree/core/statistics.h"
+#include "simtree/preprocessing/detail/option_checks.h"
 
 namespace simtree::registration {
 namespace {
@@ -78,145 +79,162 @@ std::vector<Group> GroupSlice(const std::vector<Eigen::Vector2d>& points, double
   return groups;
 }
 
-}  // namespace
+// The cloud cut into slices across up, each slice's points in the slice plane (e1, e2).
+struct Slices {
+  Eigen::Vector3d up, e1, e2;  // unit
+  double bottom = 0.0;         // height along up where the first slice starts
+  double height = 0.0;         // of a slice
+  std::vector<std::vector<Eigen::Vector2d>> points;
 
-std::optional<TrunkFit> FindTrunk(const open3d::geometry::PointCloud& cloud,
-                                  const Eigen::Vector3d& up_in, double spacing_m,
-                                  const TrunkOptions& options, std::string* why) {
-  auto fail = [&](const std::string& reason) -> std::optional<TrunkFit> {
-    if (why) *why = reason;
-    return std::nullopt;
-  };
-  if (cloud.points_.size() < 20) return fail("too few points to hold a trunk");
-  const Eigen::Vector3d up = up_in.normalized();
-  Eigen::Vector3d e1 = up.unitOrthogonal();
-  Eigen::Vector3d e2 = up.cross(e1);
-  const double link =
-      options.link_distance_m > 0 ? options.link_distance_m : std::max(0.02, 3.0 * spacing_m);
-  const double t = options.slice_height_m;
+  int count() const { return static_cast<int>(points.size()); }
+  // A slice-plane point of slice `s` in 3-D, at the slice's middle height.
+  Eigen::Vector3d Centre(const Eigen::Vector2d& c, int s) const {
+    return Eigen::Vector3d(c.x() * e1 + c.y() * e2 + (bottom + (s + 0.5) * height) * up);
+  }
+};
 
+Slices SliceCloud(const open3d::geometry::PointCloud& cloud, const Eigen::Vector3d& up,
+                  double slice_height_m) {
+  Slices slices;
+  slices.up = up.normalized();
+  slices.e1 = slices.up.unitOrthogonal();
+  slices.e2 = slices.up.cross(slices.e1);
+  slices.height = slice_height_m;
   // Heights from a robust bottom (the lowest 0.5% may be noise).
   std::vector<double> heights(cloud.points_.size());
-  for (size_t i = 0; i < heights.size(); ++i) heights[i] = cloud.points_[i].dot(up);
+  for (size_t i = 0; i < heights.size(); ++i) heights[i] = cloud.points_[i].dot(slices.up);
   std::vector<double> sorted = heights;
   const size_t low_index = sorted.size() / 200;
   std::nth_element(sorted.begin(), sorted.begin() + low_index, sorted.end());
-  const double bottom = sorted[low_index];
+  slices.bottom = sorted[low_index];
   const double top = *std::max_element(heights.begin(), heights.end());
-  const int slice_count = static_cast<int>((top - bottom) / t) + 1;
-  std::vector<std::vector<Eigen::Vector2d>> slices(slice_count);
+  const int count = static_cast<int>((top - slices.bottom) / slice_height_m) + 1;
+  slices.points.resize(count);
   for (size_t i = 0; i < heights.size(); ++i) {
-    if (heights[i] < bottom) continue;
-    const int s = std::min(slice_count - 1, static_cast<int>((heights[i] - bottom) / t));
-    slices[s].emplace_back(cloud.points_[i].dot(e1), cloud.points_[i].dot(e2));
+    if (heights[i] < slices.bottom) continue;
+    const int s =
+        std::min(count - 1, static_cast<int>((heights[i] - slices.bottom) / slice_height_m));
+    slices.points[s].emplace_back(cloud.points_[i].dot(slices.e1), cloud.points_[i].dot(slices.e2));
   }
+  return slices;
+}
 
-  // Groups of a slice that continue the trunk from `previous` (centroid, width).
-  auto continuations = [&](const std::vector<Group>& groups, const Eigen::Vector2d& centroid,
-                           double width) {
-    std::vector<const Group*> out;
-    for (const Group& g : groups) {
-      if ((g.centroid - centroid).norm() < 0.5 * (width + g.width) + link) out.push_back(&g);
-    }
-    return out;
-  };
-  // True when the slice's continuation is not a single trunk-like group.
-  auto is_split = [&](const std::vector<const Group*>& next, double trunk_width) {
-    size_t total = 0;
-    for (const Group* g : next) total += g->members.size();
-    int arms = 0;
-    for (const Group* g : next) {
-      if (g->members.size() >= options.min_arm_share * total) ++arms;
-    }
-    if (arms >= 2) return true;
-    for (const Group* g : next) {
-      if (g->members.size() >= options.min_arm_share * total &&
-          g->width > options.widen_factor * trunk_width + link) {
-        return true;
-      }
-    }
-    return false;
-  };
-  // The dominant group of a continuation (the one the trunk follows).
-  auto largest = [](const std::vector<const Group*>& next) {
-    return *std::max_element(next.begin(), next.end(), [](const Group* a, const Group* b) {
-      return a->members.size() < b->members.size();
-    });
-  };
+// The groups of a slice that continue the trunk from the slice below (its centroid and width).
+std::vector<const Group*> Continuations(const std::vector<Group>& groups,
+                                        const Eigen::Vector2d& centroid, double width,
+                                        double link) {
+  std::vector<const Group*> out;
+  for (const Group& g : groups) {
+    if ((g.centroid - centroid).norm() < 0.5 * (width + g.width) + link) out.push_back(&g);
+  }
+  return out;
+}
 
+// True when a slice's continuation is not a single trunk-like group: two arms, or one group
+// much wider than the trunk.
+bool IsSplit(const std::vector<const Group*>& next, double trunk_width, double link,
+             const TrunkOptions& options) {
+  size_t total = 0;
+  for (const Group* g : next) total += g->members.size();
+  int arms = 0;
+  for (const Group* g : next) {
+    if (g->members.size() >= options.min_arm_share * total) ++arms;
+  }
+  if (arms >= 2) return true;
+  for (const Group* g : next) {
+    if (g->members.size() >= options.min_arm_share * total &&
+        g->width > options.widen_factor * trunk_width + link) {
+      return true;
+    }
+  }
+  return false;
+}
+
+// The dominant group of a continuation (the one the trunk follows).
+const Group* Largest(const std::vector<const Group*>& next) {
+  return *std::max_element(next.begin(), next.end(), [](const Group* a, const Group* b) {
+    return a->members.size() < b->members.size();
+  });
+}
+
+// A split at slice `s` is the branching point when the next confirm_slices slices stay split
+// (or empty): a side twig or a knot does not end the trunk.
+bool SplitHolds(const Slices& slices, int s, const Eigen::Vector2d& centroid, double width,
+                double trunk_width, double link, const TrunkOptions& options) {
+  int confirmed = 0;
+  for (int c = 1; c <= options.confirm_slices && s + c < slices.count(); ++c) {
+    const std::vector<Group> later = GroupSlice(slices.points[s + c], link);
+    const auto later_next = Continuations(later, centroid, width + 2 * c * slices.height, link);
+    if (later_next.empty() || IsSplit(later_next, trunk_width, link, options)) ++confirmed;
+  }
+  return confirmed >= options.confirm_slices;
+}
+
+// The trunk followed up the slices: its slices' centroids and widths, from the first slice that
+// holds it to the last before it forks (or ends).
+struct TrunkTrace {
+  std::vector<Eigen::Vector3d> centres;  // in 3-D
+  std::vector<double> widths;
+  int first = -1;  // -1: no points at the bottom
+  int last = -1;
+  bool fork = false;
+};
+
+TrunkTrace FollowTrunk(const Slices& slices, double link, const TrunkOptions& options) {
+  TrunkTrace trace;
   // The trunk starts as the largest group of the first slices.
-  int first = -1;
   Group start;
-  for (int s = 0; s < std::min(slice_count, 3); ++s) {
-    if (slices[s].size() < 3) continue;
-    std::vector<Group> groups = GroupSlice(slices[s], link);
-    const Group& g = *std::max_element(
-        groups.begin(), groups.end(),
-        [](const Group& a, const Group& b) { return a.members.size() < b.members.size(); });
-    first = s;
-    start = g;
+  for (int s = 0; s < std::min(slices.count(), 3); ++s) {
+    if (slices.points[s].size() < 3) continue;
+    std::vector<Group> groups = GroupSlice(slices.points[s], link);
+    start = *std::max_element(groups.begin(), groups.end(), [](const Group& a, const Group& b) {
+      return a.members.size() < b.members.size();
+    });
+    trace.first = s;
     break;
   }
-  if (first < 0) return fail("no points at the bottom of the view");
-
-  std::vector<Eigen::Vector3d> centres;  // trunk slice centroids in 3-D
-  std::vector<double> widths;
-  auto centre3d = [&](const Eigen::Vector2d& c, int s) {
-    return Eigen::Vector3d(c.x() * e1 + c.y() * e2 + (bottom + (s + 0.5) * t) * up);
-  };
-  centres.push_back(centre3d(start.centroid, first));
-  widths.push_back(start.width);
+  if (trace.first < 0) return trace;
+  trace.centres.push_back(slices.Centre(start.centroid, trace.first));
+  trace.widths.push_back(start.width);
   Eigen::Vector2d centroid = start.centroid;
   double width = start.width;
-  int last = first;
+  trace.last = trace.first;
   int gap = 0;
-  bool fork = false;
-  for (int s = first + 1; s < slice_count; ++s) {
-    const std::vector<Group> groups = GroupSlice(slices[s], link);
-    const auto next = continuations(groups, centroid, width);
+  for (int s = trace.first + 1; s < slices.count(); ++s) {
+    const std::vector<Group> groups = GroupSlice(slices.points[s], link);
+    const auto next = Continuations(groups, centroid, width, link);
     if (next.empty()) {
       if (++gap > options.max_gap_slices) break;
       continue;
     }
     gap = 0;
-    const double trunk_width = UpperMedian(widths);
-    if (is_split(next, trunk_width) && centres.size() >= 2) {
-      // Confirm over the following slices.
-      int confirmed = 0;
-      for (int c = 1; c <= options.confirm_slices && s + c < slice_count; ++c) {
-        const std::vector<Group> later = GroupSlice(slices[s + c], link);
-        const auto later_next = continuations(later, centroid, width + 2 * c * t);
-        if (later_next.empty() || is_split(later_next, trunk_width)) ++confirmed;
-      }
-      if (confirmed >= options.confirm_slices) {
-        fork = true;
-        break;
-      }
+    const double trunk_width = UpperMedian(trace.widths);
+    if (IsSplit(next, trunk_width, link, options) && trace.centres.size() >= 2 &&
+        SplitHolds(slices, s, centroid, width, trunk_width, link, options)) {
+      trace.fork = true;
+      break;
     }
-    const Group* g = largest(next);
+    const Group* g = Largest(next);
     centroid = g->centroid;
     width = g->width;
-    centres.push_back(centre3d(centroid, s));
-    widths.push_back(width);
-    last = s;
+    trace.centres.push_back(slices.Centre(centroid, s));
+    trace.widths.push_back(width);
+    trace.last = s;
   }
+  return trace;
+}
 
-  const double length = (last - first + 1) * t;
-  if (length < options.min_trunk_length_m || centres.size() < 3) {
-    return fail(
-        fmt::format("no trunk: the bottom of the view holds no upright stem of {:.2f} m "
-                    "or more (found {:.2f} m)",
-                    options.min_trunk_length_m, length));
-  }
-
-  // Axis through the slice centroids (least squares), pointing up.
+// The trunk's axis through the slices' centroids (least squares, pointing up), with its base
+// and branching point on it.
+TrunkFit FitTrunkAxis(const Slices& slices, const TrunkTrace& trace, double length_m) {
+  const Eigen::Vector3d& up = slices.up;
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (const auto& c : centres) mean += c;
-  mean /= static_cast<double>(centres.size());
+  for (const auto& c : trace.centres) mean += c;
+  mean /= static_cast<double>(trace.centres.size());
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  for (const auto& c : centres) covariance += (c - mean) * (c - mean).transpose();
+  for (const auto& c : trace.centres) covariance += (c - mean) * (c - mean).transpose();
   Eigen::Vector3d axis = up;
-  if (centres.size() >= 4) {
+  if (trace.centres.size() >= 4) {
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(covariance);
     axis = solver.eigenvectors().col(2).normalized();
     if (axis.dot(up) < 0) axis = -axis;
@@ -229,13 +247,67 @@ std::optional<TrunkFit> FindTrunk(const open3d::geometry::PointCloud& cloud,
   };
   TrunkFit fit;
   fit.axis = axis;
-  fit.base = on_axis(bottom + first * t);
-  fit.branch_point = on_axis(bottom + (last + 1) * t);
-  fit.visible_width_m = UpperMedian(widths);
-  fit.length_m = length;
-  fit.fork_found = fork;
-  fit.slices = static_cast<int>(centres.size());
+  fit.base = on_axis(slices.bottom + trace.first * slices.height);
+  fit.branch_point = on_axis(slices.bottom + (trace.last + 1) * slices.height);
+  fit.visible_width_m = UpperMedian(trace.widths);
+  fit.length_m = length_m;
+  fit.fork_found = trace.fork;
+  fit.slices = static_cast<int>(trace.centres.size());
   return fit;
+}
+
+}  // namespace
+
+void TrunkOptions::Validate() const {
+  using namespace preprocessing;
+  CheckPositive("slice_height_m", slice_height_m);
+  CheckNonNegative("link_distance_m", link_distance_m);
+  CheckNonNegative("min_trunk_length_m", min_trunk_length_m);
+  CheckPositive("widen_factor", widen_factor);
+  CheckShare("min_arm_share", min_arm_share);
+  CheckNonNegative("confirm_slices", confirm_slices);
+  CheckNonNegative("max_gap_slices", max_gap_slices);
+}
+
+void CylinderFitOptions::Validate() const {
+  using namespace preprocessing;
+  CheckNonNegative("margin_m", margin_m);
+  CheckAtLeast("iterations", iterations, 1);
+  CheckPositive("huber_m", huber_m);
+  CheckAtLeast("min_points", min_points, 5);
+  CheckNonNegative("min_length_m", min_length_m);
+}
+
+void KeyRegionOptions::Validate() const {
+  using namespace preprocessing;
+  CheckNonNegative("radius_m", radius_m);
+  CheckShare("height_share", height_share);
+  CheckNonNegative("min_radius_m", min_radius_m);
+  CheckOrdered("min_radius_m", min_radius_m, "max_radius_m", max_radius_m);
+}
+
+std::optional<TrunkFit> FindTrunk(const open3d::geometry::PointCloud& cloud,
+                                  const Eigen::Vector3d& up, double spacing_m,
+                                  const TrunkOptions& options, std::string* why) {
+  options.Validate();
+  auto fail = [&](const std::string& reason) -> std::optional<TrunkFit> {
+    if (why) *why = reason;
+    return std::nullopt;
+  };
+  if (cloud.points_.size() < 20) return fail("too few points to hold a trunk");
+  const double link =
+      options.link_distance_m > 0 ? options.link_distance_m : std::max(0.02, 3.0 * spacing_m);
+  const Slices slices = SliceCloud(cloud, up, options.slice_height_m);
+  const TrunkTrace trace = FollowTrunk(slices, link, options);
+  if (trace.first < 0) return fail("no points at the bottom of the view");
+  const double length = (trace.last - trace.first + 1) * slices.height;
+  if (length < options.min_trunk_length_m || trace.centres.size() < 3) {
+    return fail(
+        fmt::format("no trunk: the bottom of the view holds no upright stem of {:.2f} m "
+                    "or more (found {:.2f} m)",
+                    options.min_trunk_length_m, length));
+  }
+  return FitTrunkAxis(slices, trace, length);
 }
 
 namespace {
@@ -286,6 +358,7 @@ double Residual(const Eigen::Vector3d& p, const Eigen::Vector3d& c, const Eigen:
 std::optional<TrunkCylinder> FitTrunkCylinder(const open3d::geometry::PointCloud& cloud,
                                               const TrunkFit& trunk,
                                               const CylinderFitOptions& options) {
+  options.Validate();
   // The trunk's points: between base and branching point (less the margins), near the axis.
   const double lo = options.margin_m;
   double hi = trunk.length_m - options.margin_m;
@@ -371,6 +444,7 @@ std::optional<TrunkCylinder> FitTrunkCylinder(const open3d::geometry::PointCloud
 
 KeyRegion KeyRegionOf(const TrunkFit& trunk, const open3d::geometry::PointCloud& cloud,
                       const Eigen::Vector3d& up, const KeyRegionOptions& options) {
+  options.Validate();
   KeyRegion region;
   region.center = trunk.branch_point;
   if (options.radius_m > 0) {

@@ -19,19 +19,18 @@
 namespace simtree::registration {
 
 struct TrunkOptions {
-  double slice_height_m = 0.04;
-  // Points closer than this (in the slice plane) are in one group; 0: 3 times `spacing_m` given
-  // to FindTrunk, at least 2 cm.
+  double slice_height_m = 0.04;  // m, > 0: thickness of a slice across up
+  // m, >= 0: points closer than this in the slice plane are one group (0: 3 times the
+  // `spacing_m` given to FindTrunk, at least 2 cm).
   double link_distance_m = 0.0;
-  double min_trunk_length_m = 0.25;
-  // A slice this many times wider than the trunk below (median width) starts the crown.
-  double widen_factor = 1.8;
-  // A group counts as an arm of a fork when it holds this share of the slice's points.
-  double min_arm_share = 0.15;
-  // Slices after a split that must stay split for it to be the branching point.
-  int confirm_slices = 2;
-  // Empty slices (occlusion) the trunk may cross.
-  int max_gap_slices = 2;
+  double min_trunk_length_m = 0.25;  // m, >= 0: a shorter stem is no trunk
+  double widen_factor = 1.8;  // > 0: a slice this many times wider than the trunk starts the crown
+  double min_arm_share = 0.15;  // [0, 1]: of a slice's points, for a group to be a fork's arm
+  int confirm_slices = 2;       // >= 0: slices after a split that must stay split
+  int max_gap_slices = 2;       // >= 0: empty slices (occlusion) the trunk may cross
+
+  // Throws InputError naming the field of a nonsense value.
+  void Validate() const;
 };
 
 // A cylinder fitted to the trunk's points between its base and the branching point. One view sees
@@ -64,11 +63,14 @@ std::optional<TrunkFit> FindTrunk(const open3d::geometry::PointCloud& cloud,
                                   const TrunkOptions& options = {}, std::string* why = nullptr);
 
 struct CylinderFitOptions {
-  double margin_m = 0.06;  // left out above the base and below the branching point
-  int iterations = 15;
-  double huber_m = 0.01;  // robust weights beyond this residual
-  int min_points = 60;
-  double min_length_m = 0.12;  // of trunk to fit
+  double margin_m = 0.06;      // m, >= 0: left out above the base and below the branching point
+  int iterations = 15;         // Gauss-Newton steps, >= 1
+  double huber_m = 0.01;       // m, > 0: robust weights beyond this residual
+  int min_points = 60;         // >= 5: fewer trunk points give no cylinder
+  double min_length_m = 0.12;  // m, >= 0: a shorter stretch of trunk gives no cylinder
+
+  // Throws InputError naming the field of a nonsense value.
+  void Validate() const;
 };
 
 // The top of the trunk is cut off where the points stop fitting (a fork the slices did not catch:
@@ -88,10 +90,13 @@ struct KeyRegion {
 struct KeyRegionOptions {
   // Radius: `radius_m`, or when 0, `height_share` of the tree's visible height, within
   // [min_radius_m, max_radius_m].
-  double radius_m = 0.0;
-  double height_share = 0.25;
-  double min_radius_m = 0.35;
-  double max_radius_m = 1.2;
+  double radius_m = 0.0;       // m, >= 0 (0: from the height)
+  double height_share = 0.25;  // [0, 1] of the tree's visible height
+  double min_radius_m = 0.35;  // m, >= 0
+  double max_radius_m = 1.2;   // m, >= min_radius_m
+
+  // Throws InputError naming the field of a nonsense value.
+  void Validate() const;
 };
 
 KeyRegion KeyRegionOf(const TrunkFit& trunk, const open3d::geometry::PointCloud& cloud,
