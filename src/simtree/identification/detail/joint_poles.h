@@ -36,8 +36,9 @@ namespace simtree::identification {
 
 struct JointPolesOptions {
   int components = 6;  // principal components of the stacked links the poles are fitted on
-  // Most modes of the joint model (chosen by BIC). Error-free records use many (the release
-  // excites the higher modes too), and too low a limit leaves room for a spurious pole.
+  // Most modes of the joint model (chosen by BIC; it replaces EstimatorOptions::max_modes for
+  // the joint fit). Error-free records use many (the release excites the higher modes too), and
+  // too low a limit leaves room for a spurious pole.
   int max_modes = 20;
   // Offer every pole split in two, refined on every link, kept when the joint BIC falls
   // (SplitMergedPoles in joint_poles.cc); a split closer than `min_split` (relative frequency)
