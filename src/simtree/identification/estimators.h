@@ -90,8 +90,8 @@ struct EstimatorOptions {
   double flat_ratio = 1.2;
 
   // (b) interpolated spectrum.
-  int zero_pad_factor = 16;  // FFT length over the record length, >= 1
-  SpectralWindow window = SpectralWindow::kExponential;
+  int zero_pad_factor = 16;                              // FFT length over the record length, >= 1
+  SpectralWindow window = SpectralWindow::kExponential;  // applied before the padded FFT
   double window_decay_nepers = 4.0;  // the exponential window's decay over the record, Np
 
   // (c) damped sinusoid fit.

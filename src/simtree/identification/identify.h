@@ -34,22 +34,22 @@ struct IdentifyOptions {
   // (reported, not used).
   EstimatorKind estimator = kDefaultEstimator;
   bool compare_estimators = true;
-  EstimatorOptions estimation;
-  ReleaseOptions release;
+  EstimatorOptions estimation;  // the estimators' band, limits and fit (estimators.h)
+  ReleaseOptions release;       // release detection (detail/release.h)
   // The release time (s, on the trajectories' clock) when known; otherwise it is detected.
   std::optional<double> release_time_s;
-  double window_s = 0.0;  // seconds of free decay kept after the release (0: to the end)
-  DeflectionOptions deflection;
-  bool include_root = true;  // give the root (trunk) marker's displacement a value too
+  double window_s = 0.0;         // seconds of free decay kept after the release (0: to the end)
+  DeflectionOptions deflection;  // the links' planes and rest pose (detail/deflection.h)
+  bool include_root = true;      // give the root (trunk) marker's displacement a value too
   // Turn tracker jumps into gaps before anything else (track_outliers.h).
   bool remove_outliers = true;
-  TrackOutlierOptions outliers;
+  TrackOutlierOptions outliers;  // the tracker-jump test (detail/track_outliers.h)
   // Replace the damped sinusoid fit's values of the links it measured by a reading on poles
   // fitted to all those links at once (joint_poles.h; a link whose joint reading fails keeps its
   // own). A tree's modes are shared by every link, and links that mix two close modes in
   // different ratios tell them apart where one link cannot (docs/identification.md).
   bool joint_poles = true;
-  JointPolesOptions joint;
+  JointPolesOptions joint;  // the joint fit (detail/joint_poles.h)
 
   // Throws InputError naming the field ("estimation.max_modes") for a value out of range.
   void Validate() const;

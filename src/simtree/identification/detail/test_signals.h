@@ -32,7 +32,7 @@ struct DecayRecordOptions {
   // Gaps: at each valid sample a gap starts with this probability and lasts 1..max_gap_samples.
   double gap_rate = 0.0;
   int max_gap_samples = 5;
-  uint64_t seed = 1;
+  uint64_t seed = 1;  // of the noise and the gaps
 
   // Throws InputError naming the field for a value out of range.
   void Validate() const;
