@@ -167,7 +167,8 @@ int Score(const std::string& scene, const std::string& materials_path, const std
   return 0;
 }
 
-// Timings: each estimator on one tree-like record; a whole identification of a 6-link tree.
+// Timings: each estimator on one tree-like record; a whole identification of a tree of 6 links
+// and its root marker.
 void BM_Estimator(benchmark::State& state) {
   const identification::EstimatorKind kind =
       static_cast<identification::EstimatorKind>(state.range(0));

@@ -5,7 +5,9 @@
 # estimates every link with all three estimators over 10 s of free decay, `simtree build` makes the
 # simulation-ready tree on the true static tree, and `simtree eval identification` scores links and
 # branches. The same identification on the true tracks (no tracker error) is scored beside it: it
-# separates what the tracker's noise costs from what a 10 s record of a tree's modes allows.
+# separates what the tracker's noise costs from what a 10 s record of a tree's modes allows. Both
+# are identified a second time with `--per-link` (the damped sinusoid fit on each link alone
+# instead of on poles shared by all links), scored in the pooled table.
 # Prints one markdown row per capture and estimator, then the medians over every link of every
 # capture (pooled), and per-link detail in <work>/links.md.
 #
@@ -29,11 +31,12 @@ for sp in $species; do
     run="$work/${sp}_$seed"
     [ -f "$scene/gt/modal.json" ] || "$simtree" -q synth --species "$sp" --seed "$seed" \
       --no-contact-sheet --out "$scene" > /dev/null
-    for noise in 2.5 0; do
-      tag=$([ "$noise" = 0 ] && echo ".clean" || echo "")
+    for run_kind in "2.5 joint-poles" "0 joint-poles" "2.5 per-link" "0 per-link"; do
+      read -r noise fit <<< "$run_kind"
+      tag=$([ "$noise" = 0 ] && echo ".clean" || echo "")$([ "$fit" = joint-poles ] || echo ".perlink")
       "$simtree" -q identify "$scene/gt/trajectories.csv" --links "$scene/pull/markers.json" \
         --tree "$scene/gt/tree.json" --camera-pose "$scene/gt/pull_camera.json" \
-        --out "$run$tag.materials.json" --no-plots --window 10 \
+        --out "$run$tag.materials.json" --no-plots --window 10 --$fit \
         $([ "$noise" = 0 ] || echo "--simulate-tracker-noise $noise --visibility $scene/gt/markers_2d.json --seed $seed") \
         > "$run$tag.identify.txt" 2>&1
       "$simtree" -q build "$scene/gt/tree.json" -m "$run$tag.materials.json" \
@@ -89,9 +92,11 @@ out, files = sys.argv[1], sys.argv[2:]
 def med(v): return f"{100 * statistics.median(v):.2f}%" if v else "-"
 rows, pooled = [], {}
 for path in files:
-    for tag in ("", ".clean"):
+    for tag in ("", ".clean", ".perlink", ".clean.perlink"):
         s = json.load(open(path.replace(".scores.json", tag + ".scores.json")))
         for name, est in s["links"].items():
+            if tag.endswith(".perlink") and name != "damped_sinusoid_fit":
+                continue  # --per-link changes the fit's values only
             p = pooled.setdefault((name, tag), {"all": [], "clear": [], "n": 0, "none": 0, "clear_n": 0})
             for l in est["per_link"]:
                 p["n"] += 1
@@ -110,7 +115,8 @@ print("| estimator | tracker error | links | not estimated | median df/f | media
 print("| --- | --- | --- | --- | --- | --- | --- | --- |")
 for (name, tag), p in sorted(pooled.items(), key=lambda kv: (kv[0][1], kv[0][0])):
     a, c = p["all"], p["clear"]
-    print(f"| {name} | {'none' if tag else '2.5 mm'} | {p['n']} | {p['none']} | "
+    label = name + (" (per link)" if tag.endswith(".perlink") else "")
+    print(f"| {label} | {'none' if tag.startswith('.clean') else '2.5 mm'} | {p['n']} | {p['none']} | "
           f"{med([x[0] for x in a])} | {med([x[1] for x in a if x[1] is not None])} | "
           f"{med([x[2] for x in a])} | {len(c)} of {p['clear_n']}: {med([x[0] for x in c])}, "
           f"{med([x[1] for x in c if x[1] is not None])} |")

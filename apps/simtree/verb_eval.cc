@@ -102,7 +102,7 @@ void RegisterEvalIdentification(CLI::App& eval) {
     // The chosen estimator first, then every other one the file holds.
     std::vector<std::optional<identification::EstimatorKind>> kinds = {std::nullopt};
     for (identification::EstimatorKind kind : identification::AllEstimators()) {
-      if (ToString(kind) != materials.estimator) kinds.push_back(kind);
+      if (kind != materials.estimator) kinds.push_back(kind);
     }
     nlohmann::ordered_json per_estimator = nlohmann::ordered_json::object();
     for (const auto& kind : kinds) {

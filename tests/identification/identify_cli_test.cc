@@ -92,7 +92,8 @@ TEST(IdentifyCli, BadInputsSayWhatIsWrongAndWriteNothing) {
   // Build without any measured value.
   test::WriteText(
       dir / "empty.json",
-      R"({"format": "simtree.materials", "version": 1, "estimator": "x", "links": []})");
+      R"({"format": "simtree.materials", "version": 1, "estimator": "damped_sinusoid_fit",
+          "links": []})");
   WriteTreeJson(test::IdentificationTree(), dir / "static.json");
   r = test::RunCli("build " + (dir / "static.json").string() + " -m " +
                    (dir / "empty.json").string() + " -o " + (dir / "ready.json").string());

@@ -30,7 +30,7 @@ IdentificationResult Identified() {
 
 TEST(MaterialsFile, FromAnIdentificationWithBranchModesAndAMissingLink) {
   const MaterialsFile m = MaterialsFromIdentification(Identified(), "t.csv");
-  EXPECT_EQ(m.estimator, "damped_sinusoid_fit");
+  EXPECT_EQ(m.estimator, EstimatorKind::kDampedSinusoidFit);
   ASSERT_EQ(m.links.size(), 4u);
   EXPECT_EQ(m.links[3].value.status, EstimateStatus::kMissingMarker);
   ASSERT_EQ(m.branches.size(), 1u);  // branch 4's link has no value, the root has no branch
@@ -89,6 +89,7 @@ TEST(MaterialsFile, BadFilesNameTheField) {
       {"negative damping", [](auto& j) { j["links"][1]["damping_ratio"] = -0.1; },
        "links[1].damping_ratio: expected in (0, 1)"},
       {"status", [](auto& j) { j["links"][0]["status"] = "great"; }, "unknown status"},
+      {"estimator", [](auto& j) { j["estimator"] = "x"; }, "estimator: unknown estimator"},
       {"modes", [](auto& j) { j["branches"][0]["modes"].erase(0); }, "expected 3 modes"},
       {"mode order",
        [](auto& j) { std::swap(j["branches"][0]["modes"][0], j["branches"][0]["modes"][1]); },

@@ -123,6 +123,30 @@ TEST(SimulationReady, NothingMeasuredOrBranchesTheTreeLacksAreErrors) {
               ::testing::ThrowsMessage<InputError>(HasSubstr("none is on a known branch")));
 }
 
+TEST(SimulationReady, OptionsOutOfRangeNameTheField) {
+  const Tree tree = test::IdentificationTree();
+  auto error = [&](const BuildOptions& options) {
+    try {
+      BuildSimulationReadyTree(tree, Measured({{1, 1.2}, {2, 1.4}}), options);
+    } catch (const InputError& e) {
+      return e.where();
+    }
+    return std::string("no error");
+  };
+  BuildOptions density;
+  density.wood_density_kg_m3 = -900;
+  EXPECT_EQ(error(density), "wood_density_kg_m3");
+  BuildOptions cantilever;
+  cantilever.interpolation.min_branches_cantilever = 1;
+  EXPECT_EQ(error(cantilever), "interpolation.min_branches_cantilever");
+  BuildOptions two_slopes;
+  two_slopes.interpolation.min_branches_two_slopes = 0;
+  EXPECT_EQ(error(two_slopes), "interpolation.min_branches_two_slopes");
+  EXPECT_THAT([] { InterpolationOptions{.min_branches_cantilever = 2}.Validate(); },
+              ::testing::ThrowsMessage<InputError>(
+                  HasSubstr("options: min_branches_cantilever: expected >= 3, got 2")));
+}
+
 TEST(SimulationReady, DepthFirstRenumberingKeepsTheHierarchy) {
   Tree tree = test::IdentificationTree();
   tree.markers.push_back({0, "M0", 4, 0.1, -1, tree.branches[4].PointAt(0.1)});

@@ -47,7 +47,7 @@ void Summarize(const std::vector<const ValueScore*>& values, ScoreSummary& summa
 LinkScores ScoreLinks(const identification::MaterialsFile& materials, const ModalTruth& truth,
                       std::optional<identification::EstimatorKind> estimator) {
   LinkScores out;
-  out.estimator = estimator ? ToString(*estimator) : materials.estimator;
+  out.estimator = ToString(estimator.value_or(materials.estimator));
   for (const identification::LinkMaterial& link : materials.links) {
     const ModalTruth::Link* t = nullptr;
     for (const ModalTruth::Link& candidate : truth.links) {

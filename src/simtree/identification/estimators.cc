@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "simtree/core/units.h"
+#include "simtree/identification/detail/option_checks.h"
 
 namespace simtree::identification {
 namespace {
@@ -191,6 +192,24 @@ void ReadFittedModes(DampedSinusoidFit fit, int channels, double record_s, doubl
   out.fit = std::move(fit);
 }
 
+void EstimatorOptions::Validate() const {
+  RequireNonNegative(min_frequency_hz, "min_frequency_hz");
+  RequireNonNegative(max_frequency_hz, "max_frequency_hz");
+  if (min_frequency_hz > 0 && max_frequency_hz > 0) {
+    RequireOption(max_frequency_hz > min_frequency_hz, "max_frequency_hz",
+                  fmt::format("> min_frequency_hz ({})", min_frequency_hz), max_frequency_hz);
+  }
+  RequirePositive(min_periods, "min_periods");
+  RequireShare(max_gap_fraction, "max_gap_fraction");
+  RequireNonNegative(flat_ratio, "flat_ratio");
+  RequireAtLeast(zero_pad_factor, 1, "zero_pad_factor");
+  RequireNonNegative(window_decay_nepers, "window_decay_nepers");
+  RequireAtLeast(max_modes, 1, "max_modes");
+  RequireOption(max_damping_ratio > 0 && max_damping_ratio < 1, "max_damping_ratio",
+                "a damping ratio in (0, 1)", max_damping_ratio);
+  RequireAtLeast(max_iterations, 1, "max_iterations");
+}
+
 SearchBand BandOf(const EstimatorOptions& options, double duration_s, double dt) {
   const double nyquist = 0.5 / dt;
   return {
@@ -287,6 +306,7 @@ SpectralPeak FindHalfPowerPeak(const SampledSignal& signal, int channel,
 
 SignalEstimate EstimateModes(const SampledSignal& input, EstimatorKind estimator,
                              const EstimatorOptions& options) {
+  options.Validate();
   SignalEstimate out;
   out.estimator = estimator;
   auto fail_all = [&](EstimateStatus status, const std::string& message) {

@@ -79,28 +79,28 @@ struct ModalEstimate {
 };
 
 struct EstimatorOptions {
-  // Band searched for the mode; 0 means from the record: the lowest is one period over the
-  // record, the highest 0.8 of the Nyquist frequency.
+  // Band searched for the mode (Hz); 0: from the record, one period over the record at the low
+  // end, 0.8 of the Nyquist frequency at the high end.
   double min_frequency_hz = 0.0;
   double max_frequency_hz = 0.0;
-  // A mode needs this many periods inside the record, otherwise it is kTooShort.
-  double min_periods = 2.0;
-  // More invalid samples than this share of the record gives kTooManyGaps.
-  double max_gap_fraction = 0.5;
-  // The signal's standard deviation must exceed this multiple of the noise level
-  // (EstimateNoiseLevel), otherwise kFlat.
+  double min_periods = 2.0;       // periods of a mode the record must hold, else kTooShort
+  double max_gap_fraction = 0.5;  // share of invalid samples above which kTooManyGaps
+  // kFlat unless the signal's standard deviation exceeds this multiple of its noise level
+  // (EstimateNoiseLevel).
   double flat_ratio = 1.2;
 
   // (b) interpolated spectrum.
-  int zero_pad_factor = 16;
-  SpectralWindow window = SpectralWindow::kExponential;
-  // The exponential window's decay over the record, in nepers (rate = this / duration).
-  double window_decay_nepers = 4.0;
+  int zero_pad_factor = 16;                              // FFT length over the record length, >= 1
+  SpectralWindow window = SpectralWindow::kExponential;  // applied before the padded FFT
+  double window_decay_nepers = 4.0;  // the exponential window's decay over the record, Np
 
   // (c) damped sinusoid fit.
   int max_modes = 6;               // most modes the model may hold (chosen by BIC)
   double max_damping_ratio = 0.5;  // poles damped more than this are noise, not modes
-  int max_iterations = 200;        // Levenberg-Marquardt
+  int max_iterations = 200;        // Levenberg-Marquardt iterations per fit
+
+  // Throws InputError naming the field for a value out of range.
+  void Validate() const;
 };
 
 // A peak read off a spectrum by (a) or (b), for reports and plots.
@@ -149,7 +149,8 @@ struct SignalEstimate {
   std::vector<SpectralPeak> peaks;       // (a), (b): one per channel
   std::optional<DampedSinusoidFit> fit;  // (c)
   double noise_level = 0.0;              // largest channel noise (EstimateNoiseLevel)
-  double duration_s = 0.0;               // record length used
+  double duration_s = 0.0;               // record length used, s
+  bool joint_poles = false;  // (c) read on poles fitted to every link at once (joint_poles.h)
 };
 
 SignalEstimate EstimateModes(const SampledSignal& signal, EstimatorKind estimator,

@@ -8,6 +8,7 @@
 #include <spdlog/spdlog.h>
 
 #include "simtree/core/error.h"
+#include "simtree/identification/detail/option_checks.h"
 
 namespace simtree::identification {
 
@@ -20,6 +21,7 @@ const SignalEstimate* LinkIdentification::Find(EstimatorKind kind) const {
 
 MaterialRanges ComputeRanges(const std::vector<LabeledEstimate>& links,
                              const RangeOptions& bounds) {
+  bounds.Validate();
   MaterialRanges r;
   r.links = static_cast<int>(links.size());
   r.bounds = bounds;
@@ -75,7 +77,138 @@ MaterialRanges IdentificationResult::Ranges(std::optional<EstimatorKind> kind,
   return ComputeRanges(values, bounds);
 }
 
+void IdentifyOptions::Validate() const {
+  if (release_time_s) {
+    RequireOption(std::isfinite(*release_time_s), "release_time_s", "a finite time in s",
+                  *release_time_s);
+  }
+  RequireNonNegative(window_s, "window_s");
+  ValidateMember(estimation, "estimation");
+  ValidateMember(release, "release");
+  ValidateMember(deflection, "deflection");
+  ValidateMember(outliers, "outliers");
+  ValidateMember(joint, "joint");
+}
+
+void RangeOptions::Validate() const {
+  RequirePositive(max_frequency_relative_std, "max_frequency_relative_std");
+  RequirePositive(max_damping_relative_std, "max_damping_relative_std");
+}
+
+const char* ToString(JointPolesOutcome outcome) {
+  switch (outcome) {
+    case JointPolesOutcome::kOff:
+      return "off";
+    case JointPolesOutcome::kTooFewLinks:
+      return "too_few_links";
+    case JointPolesOutcome::kNoPoles:
+      return "no_poles";
+    case JointPolesOutcome::kApplied:
+      return "applied";
+  }
+  return "?";
+}
+
 namespace {
+
+// Throws when no marker of the list has a trajectory (nothing could be measured: most likely the
+// wrong list); warns of tracks the list does not name.
+void CheckMarkersTracked(const Trajectories& trajectories, const std::vector<MarkerLink>& markers,
+                         const std::string& source) {
+  std::set<int> listed;
+  int tracked = 0;
+  for (const MarkerLink& m : markers) {
+    listed.insert(m.id);
+    tracked += trajectories.Find(m.id) != nullptr;
+  }
+  if (tracked == 0) {
+    std::string ids;
+    for (const MarkerTrack& t : trajectories.tracks) {
+      ids += (ids.empty() ? "" : ", ") + std::to_string(t.marker);
+    }
+    throw InputError(source, "",
+                     fmt::format("none of the {} markers of the marker list has a trajectory "
+                                 "(the trajectories hold markers {})",
+                                 markers.size(), ids));
+  }
+  for (const MarkerTrack& track : trajectories.tracks) {
+    if (!listed.count(track.marker)) {
+      spdlog::warn("{}: marker {} is not in the marker list; it is ignored", source, track.marker);
+    }
+  }
+}
+
+// The free decay: frames [first, end) from the release, to the end or `window_s` long.
+struct FreeDecay {
+  ReleaseDetection release;
+  int first = 0, end = 0;
+};
+
+FreeDecay FindFreeDecay(const Trajectories& trajectories, const IdentifyOptions& options,
+                        const std::string& source) {
+  FreeDecay decay;
+  const int n = trajectories.frame_count();
+  if (options.release_time_s) {
+    decay.first = FrameAtOrAfter(trajectories, *options.release_time_s);
+    if (decay.first >= n) {
+      throw InputError(source, "",
+                       fmt::format("the release time {:.3f} s is after the last frame "
+                                   "({:.3f} s)",
+                                   *options.release_time_s, trajectories.times_s.back()));
+    }
+    decay.release.outcome = ReleaseOutcome::kGiven;
+    decay.release.frame_index = decay.first;
+    decay.release.time_s = trajectories.times_s[decay.first];
+    decay.release.note = fmt::format("release given at {:.3f} s", *options.release_time_s);
+  } else {
+    decay.release = DetectRelease(trajectories, options.release);
+    decay.first = decay.release.frame_index;
+  }
+  decay.end = n;
+  if (options.window_s > 0) {
+    decay.end = std::min(
+        n, FrameAtOrAfter(trajectories, trajectories.times_s[decay.first] + options.window_s));
+  }
+  return decay;
+}
+
+// The chosen estimator, then (when comparing) every other one.
+std::vector<EstimatorKind> EstimatorsToRun(const IdentifyOptions& options) {
+  std::vector<EstimatorKind> kinds = {options.estimator};
+  if (options.compare_estimators) {
+    for (EstimatorKind k : AllEstimators()) {
+      if (k != options.estimator) kinds.push_back(k);
+    }
+  }
+  return kinds;
+}
+
+// Every link's deflection over the free decay, read by every estimator in `kinds`; a link with no
+// signal keeps its reason as a kMissingMarker value.
+std::vector<LinkIdentification> EstimateLinks(const Trajectories& trajectories,
+                                              const std::vector<MarkerLink>& markers,
+                                              const FreeDecay& decay,
+                                              const std::vector<EstimatorKind>& kinds,
+                                              const IdentifyOptions& options) {
+  std::vector<LinkIdentification> out;
+  const std::vector<DeflectionLink> links = LinksFromMarkers(markers, options.include_root);
+  for (DeflectionSignal& deflection :
+       ComputeDeflectionSignals(trajectories, links, decay.first, decay.end, options.deflection)) {
+    LinkIdentification link;
+    if (!deflection.ok()) {
+      link.value.status = EstimateStatus::kMissingMarker;
+      link.value.message = deflection.problem;
+    } else {
+      for (EstimatorKind kind : kinds) {
+        link.estimates.push_back(EstimateModes(deflection.signal, kind, options.estimation));
+      }
+      link.value = link.estimates.front().dominant;
+    }
+    link.deflection = std::move(deflection);
+    out.push_back(std::move(link));
+  }
+  return out;
+}
 
 // The damped sinusoid fit's estimate of every link it measured, re-read on joint poles.
 void ApplyJointPoles(const IdentifyOptions& options, IdentificationResult& out) {
@@ -92,13 +225,18 @@ void ApplyJointPoles(const IdentifyOptions& options, IdentificationResult& out) 
     }
   }
   if (signals.size() < 2) {
+    out.joint_poles = JointPolesOutcome::kTooFewLinks;
     out.joint_poles_note =
         fmt::format("joint poles: {} link measured, nothing to join", signals.size());
     return;
   }
   JointPoles joint = EstimateJointPoles(signals, options.estimation, options.joint);
   out.joint_poles_note = joint.message;
-  if (!joint.ok) return;
+  if (!joint.ok) {
+    out.joint_poles = JointPolesOutcome::kNoPoles;
+    return;
+  }
+  out.joint_poles = JointPolesOutcome::kApplied;
   int kept = 0;
   for (size_t i = 0; i < signals.size(); ++i) {
     SignalEstimate& e = joint.links[i];
@@ -121,7 +259,9 @@ void ApplyJointPoles(const IdentifyOptions& options, IdentificationResult& out) 
 IdentificationResult IdentifyMaterials(const Trajectories& input,
                                        const std::vector<MarkerLink>& markers,
                                        const IdentifyOptions& options, const std::string& source) {
+  options.Validate();
   IdentificationResult out;
+  // A tracker jump would pass for the release and put a spike in every spectrum: gaps first.
   Trajectories trajectories = input;
   if (options.remove_outliers) {
     out.outliers = RemoveTrackOutliers(trajectories, options.outliers);
@@ -131,79 +271,19 @@ IdentificationResult IdentifyMaterials(const Trajectories& input,
   if (trajectories.frame_count() < 2) {
     throw InputError(source, "", "expected at least 2 frames of trajectories");
   }
-  std::set<int> listed;
-  int tracked = 0;
-  for (const MarkerLink& m : markers) {
-    listed.insert(m.id);
-    tracked += trajectories.Find(m.id) != nullptr;
-  }
-  if (tracked == 0) {
-    throw InputError(source, "",
-                     fmt::format("none of the {} markers of the marker list has a trajectory "
-                                 "(the trajectories hold markers {})",
-                                 markers.size(), [&] {
-                                   std::string ids;
-                                   for (const MarkerTrack& t : trajectories.tracks) {
-                                     ids += (ids.empty() ? "" : ", ") + std::to_string(t.marker);
-                                   }
-                                   return ids;
-                                 }()));
-  }
-  for (const MarkerTrack& track : trajectories.tracks) {
-    if (!listed.count(track.marker)) {
-      spdlog::warn("{}: marker {} is not in the marker list; it is ignored", source, track.marker);
-    }
-  }
+  CheckMarkersTracked(trajectories, markers, source);
   const int n = trajectories.frame_count();
   out.frame_rate_hz = (n - 1) / (trajectories.times_s.back() - trajectories.times_s.front());
 
-  // The free decay: from the release to the end, or `window_s` long.
-  int first = 0;
-  if (options.release_time_s) {
-    first = FrameAtOrAfter(trajectories, *options.release_time_s);
-    if (first >= n) {
-      throw InputError(source, "",
-                       fmt::format("the release time {:.3f} s is after the last frame "
-                                   "({:.3f} s)",
-                                   *options.release_time_s, trajectories.times_s.back()));
-    }
-    out.release.found = true;
-    out.release.frame_index = first;
-    out.release.time_s = trajectories.times_s[first];
-    out.release.note = fmt::format("release given at {:.3f} s", *options.release_time_s);
-  } else {
-    out.release = DetectRelease(trajectories, options.release);
-    first = out.release.frame_index;
-  }
-  int end = n;
-  if (options.window_s > 0) {
-    end = std::min(n, FrameAtOrAfter(trajectories, trajectories.times_s[first] + options.window_s));
-  }
-  out.window_start_s = trajectories.times_s[first];
-  out.window_end_s = trajectories.times_s[std::max(first, end - 1)];
+  // Only the free decay after the release follows the modal model the estimators fit.
+  const FreeDecay decay = FindFreeDecay(trajectories, options, source);
+  out.release = decay.release;
+  out.window_start_s = trajectories.times_s[decay.first];
+  out.window_end_s = trajectories.times_s[std::max(decay.first, decay.end - 1)];
 
-  std::vector<EstimatorKind> kinds = {options.estimator};
-  if (options.compare_estimators) {
-    for (EstimatorKind k : AllEstimators()) {
-      if (k != options.estimator) kinds.push_back(k);
-    }
-  }
-  const std::vector<DeflectionLink> links = LinksFromMarkers(markers, options.include_root);
-  for (DeflectionSignal& deflection :
-       ComputeDeflectionSignals(trajectories, links, first, end, options.deflection)) {
-    LinkIdentification link;
-    if (!deflection.problem.empty()) {
-      link.value.status = EstimateStatus::kMissingMarker;
-      link.value.message = deflection.problem;
-    } else {
-      for (EstimatorKind kind : kinds) {
-        link.estimates.push_back(EstimateModes(deflection.signal, kind, options.estimation));
-      }
-      link.value = link.estimates.front().dominant;
-    }
-    link.deflection = std::move(deflection);
-    out.links.push_back(std::move(link));
-  }
+  out.estimators = EstimatorsToRun(options);
+  out.links = EstimateLinks(trajectories, markers, decay, out.estimators, options);
+  // The tree's modes are shared by every link: read the measured links on poles fitted to all.
   if (options.joint_poles) ApplyJointPoles(options, out);
   return out;
 }
@@ -260,6 +340,20 @@ std::string FormatLinkTable(const IdentificationResult& result) {
     }
     if (v.status != EstimateStatus::kOk && !v.message.empty()) out += "   " + v.message;
     out += "\n";
+  }
+  return out;
+}
+
+std::string FormatSummary(const IdentificationResult& result, const RangeOptions& bounds) {
+  std::string out = FormatLinkTable(result) + "\n";
+  out += fmt::format(
+      "Ranges (paper Table IV), over values known to {:.0f}% (frequency) and {:.0f}% (damping), "
+      "one standard deviation:\n",
+      100 * bounds.max_frequency_relative_std, 100 * bounds.max_damping_relative_std);
+  for (EstimatorKind kind : result.estimators) {
+    const MaterialRanges ranges = kind == result.estimator ? result.Ranges(std::nullopt, bounds)
+                                                           : result.Ranges(kind, bounds);
+    out += "  " + FormatRanges(ranges, ToString(kind)) + "\n";
   }
   return out;
 }

@@ -30,28 +30,40 @@
 namespace simtree::identification {
 
 struct IdentifyOptions {
+  // The estimator whose values are chosen; with `compare_estimators` the others run too
+  // (reported, not used).
   EstimatorKind estimator = kDefaultEstimator;
-  // Run the other estimators too, for comparison (reported, not used).
   bool compare_estimators = true;
-  EstimatorOptions estimation;
-  ReleaseOptions release;
+  EstimatorOptions estimation;  // the estimators' band, limits and fit (estimators.h)
+  ReleaseOptions release;       // release detection (detail/release.h)
   // The release time (s, on the trajectories' clock) when known; otherwise it is detected.
   std::optional<double> release_time_s;
-  // Seconds of free decay kept after the release (0: to the end of the record).
-  double window_s = 0.0;
-  DeflectionOptions deflection;
-  // Give the root (trunk) marker's displacement a value too.
-  bool include_root = true;
-  // Tracker jumps are turned into gaps before anything else (track_outliers.h).
+  double window_s = 0.0;         // seconds of free decay kept after the release (0: to the end)
+  DeflectionOptions deflection;  // the links' planes and rest pose (detail/deflection.h)
+  bool include_root = true;      // give the root (trunk) marker's displacement a value too
+  // Turn tracker jumps into gaps before anything else (track_outliers.h).
   bool remove_outliers = true;
-  TrackOutlierOptions outliers;
+  TrackOutlierOptions outliers;  // the tracker-jump test (detail/track_outliers.h)
   // Replace the damped sinusoid fit's values of the links it measured by a reading on poles
   // fitted to all those links at once (joint_poles.h; a link whose joint reading fails keeps its
-  // own). On by default: it measures better than each link alone on the synthetic pull tests
-  // (docs/identification.md, "Joint poles across links").
+  // own). A tree's modes are shared by every link, and links that mix two close modes in
+  // different ratios tell them apart where one link cannot (docs/identification.md).
   bool joint_poles = true;
-  JointPolesOptions joint;
+  JointPolesOptions joint;  // the joint fit (detail/joint_poles.h)
+
+  // Throws InputError naming the field ("estimation.max_modes") for a value out of range.
+  void Validate() const;
 };
+
+// What the joint reading across links (IdentifyOptions::joint_poles) did.
+enum class JointPolesOutcome {
+  kOff,          // IdentifyOptions::joint_poles is false
+  kTooFewLinks,  // fewer than 2 links measured by the damped sinusoid fit: nothing to join
+  kNoPoles,      // the joint fit found no mode: every link keeps its own fit
+  kApplied,      // the measured links read on the joint poles
+};
+// "off", "too_few_links", "no_poles", "applied".
+const char* ToString(JointPolesOutcome outcome);
 
 struct LinkIdentification {
   DeflectionSignal deflection;
@@ -69,8 +81,11 @@ struct LinkIdentification {
 // (twice the 1% the identification aims at) and a damping ratio known to 20% (Table IV's damping
 // ranges are 1.4-2.5x wide: a 1-sigma band of +-20% still says where in it a value lies).
 struct RangeOptions {
-  double max_frequency_relative_std = 0.02;
-  double max_damping_relative_std = 0.20;
+  double max_frequency_relative_std = 0.02;  // frequency's standard deviation over its value
+  double max_damping_relative_std = 0.20;    // damping ratio's standard deviation over its value
+
+  // Throws InputError naming the field for a value out of range.
+  void Validate() const;
 };
 
 // Ranges over the links with a value (paper Table IV: "Natural frequency f (Hz)", "Damping
@@ -102,11 +117,14 @@ MaterialRanges ComputeRanges(const std::vector<LabeledEstimate>& links,
 struct IdentificationResult {
   TrackOutlierReport outliers;  // tracker jumps removed before the rest
   ReleaseDetection release;     // as detected (or as given)
+  // The free decay used, s on the trajectories' clock.
   double window_start_s = 0.0, window_end_s = 0.0;
   double frame_rate_hz = 0.0;
   EstimatorKind estimator = kDefaultEstimator;
+  std::vector<EstimatorKind> estimators;  // every estimator run, the chosen one first
   std::vector<LinkIdentification> links;
-  std::string joint_poles_note;  // with IdentifyOptions::joint_poles: what the joint fit did
+  JointPolesOutcome joint_poles = JointPolesOutcome::kOff;
+  std::string joint_poles_note;  // what the joint fit did, for a person (empty when off)
 
   MaterialRanges Ranges(std::optional<EstimatorKind> kind = std::nullopt,
                         const RangeOptions& bounds = {}) const;
@@ -126,5 +144,8 @@ IdentificationResult IdentifyMaterials(const Trajectories& trajectories,
 std::string FormatRanges(const MaterialRanges& ranges, const std::string& name);
 // A per-link table (label, status, f, zeta with their standard deviations, and every estimator).
 std::string FormatLinkTable(const IdentificationResult& result);
+// What `simtree identify` prints: the link table, then the Table IV row of every estimator run
+// (the chosen one first), over the values known to `bounds`.
+std::string FormatSummary(const IdentificationResult& result, const RangeOptions& bounds = {});
 
 }  // namespace simtree::identification

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 namespace simtree::identification {
 
@@ -112,6 +113,31 @@ std::vector<MarkerLink> LinkMarkersByTree(const Tree& tree,
   }
   // One root: the first found (branches come parents first, so it is the lowest in the tree).
   for (size_t i = 1; i < roots.size(); ++i) out[roots[i]].parent = out[roots[0]].id;
+  return out;
+}
+
+TreeMarkers MarkersOnTree(const Tree& tree, const Trajectories& trajectories,
+                          const Eigen::Isometry3d& world_from_camera,
+                          std::vector<MarkerLink> listed, double max_distance_m) {
+  TreeMarkers out;
+  out.placements = PlaceMarkersOnTree(tree, trajectories, world_from_camera);
+  if (listed.empty()) {
+    out.markers = LinkMarkersByTree(tree, out.placements);
+    spdlog::info("linked {} markers along the static tree", out.markers.size());
+  } else {
+    for (MarkerLink& m : listed) {
+      for (const MarkerPlacement& p : out.placements) {
+        if (p.marker == m.id && !m.branch && p.branch >= 0) m.branch = p.branch;
+      }
+    }
+    out.markers = std::move(listed);
+  }
+  for (const MarkerPlacement& p : out.placements) {
+    if (p.branch >= 0 && p.distance_m > max_distance_m) {
+      spdlog::warn("marker {} is {:.0f} mm from its nearest branch {}: is the camera pose right?",
+                   p.marker, 1e3 * p.distance_m, p.branch);
+    }
+  }
   return out;
 }
 

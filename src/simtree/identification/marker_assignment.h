@@ -39,4 +39,17 @@ std::vector<MarkerPlacement> PlaceMarkersOnTree(const Tree& tree, const Trajecto
 std::vector<MarkerLink> LinkMarkersByTree(const Tree& tree,
                                           const std::vector<MarkerPlacement>& placements);
 
+// The marker list `identify` works with when a static tree is given: `listed` (markers.json;
+// empty when there is none) with each marker's branch filled in from its placement where the list
+// gives none, or, when nothing is listed, links that follow the tree (LinkMarkersByTree). Warns of
+// markers placed farther than `max_distance_m` from their branch (a wrong camera pose, most
+// likely).
+struct TreeMarkers {
+  std::vector<MarkerLink> markers;
+  std::vector<MarkerPlacement> placements;  // one per track, in track order
+};
+TreeMarkers MarkersOnTree(const Tree& tree, const Trajectories& trajectories,
+                          const Eigen::Isometry3d& world_from_camera,
+                          std::vector<MarkerLink> listed, double max_distance_m = 0.05);
+
 }  // namespace simtree::identification

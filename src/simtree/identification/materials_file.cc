@@ -30,46 +30,129 @@ ojson EstimateToJson(const ModalEstimate& e) {
   return j;
 }
 
-EstimateStatus ParseStatus(const JsonReader& r, const nlohmann::json& v, const std::string& at) {
-  const std::string name = r.String(v, at);
+EstimateStatus ParseStatus(const JsonNode& node) {
+  const std::string name = node.String();
   for (int k = 0; k <= static_cast<int>(EstimateStatus::kMissingMarker); ++k) {
     if (name == ToString(static_cast<EstimateStatus>(k))) return static_cast<EstimateStatus>(k);
   }
-  r.Fail(at, fmt::format("unknown status \"{}\"", name));
+  node.Fail(fmt::format("unknown status \"{}\"", name));
 }
 
-double NullableNumber(const JsonReader& r, const nlohmann::json& obj, const std::string& key,
-                      const std::string& at) {
-  if (!r.Has(obj, key) || obj[key].is_null()) return kNaN;
-  return r.Number(obj[key], Member(at, key));
+// A number that may be missing or null (NaN then).
+double NullableNumber(const JsonNode& obj, const std::string& key) {
+  const std::optional<JsonNode> value = obj.Find(key);
+  return value && !value->is_null() ? value->Number() : kNaN;
 }
 
-ModalEstimate EstimateFromJson(const JsonReader& r, const nlohmann::json& j,
-                               const std::string& at) {
-  r.Object(j, at);
+ModalEstimate EstimateFromJson(const JsonNode& j) {
+  j.ExpectObject();
   ModalEstimate e;
-  e.status = ParseStatus(r, r.Field(j, "status", at), Member(at, "status"));
-  if (r.Has(j, "message")) e.message = r.String(j["message"], Member(at, "message"));
-  e.frequency_hz = NullableNumber(r, j, "frequency_hz", at);
-  e.damping_ratio = NullableNumber(r, j, "damping_ratio", at);
-  e.frequency_std_hz = NullableNumber(r, j, "frequency_std_hz", at);
-  e.damping_std = NullableNumber(r, j, "damping_std", at);
-  e.amplitude = NullableNumber(r, j, "amplitude", at);
+  e.status = ParseStatus(j.Field("status"));
+  if (const auto message = j.Find("message")) e.message = message->String();
+  e.frequency_hz = NullableNumber(j, "frequency_hz");
+  e.damping_ratio = NullableNumber(j, "damping_ratio");
+  e.frequency_std_hz = NullableNumber(j, "frequency_std_hz");
+  e.damping_std = NullableNumber(j, "damping_std");
+  e.amplitude = NullableNumber(j, "amplitude");
   if (e.status == EstimateStatus::kOk && (!e.has_frequency() || !e.has_damping())) {
-    r.Fail(at, "status \"ok\" needs a frequency_hz and a damping_ratio");
+    j.Fail("status \"ok\" needs a frequency_hz and a damping_ratio");
   }
   if (e.has_frequency() && e.frequency_hz <= 0) {
-    r.Fail(Member(at, "frequency_hz"), fmt::format("expected > 0, got {}", e.frequency_hz));
+    j.FailAt(Member(j.at(), "frequency_hz"), fmt::format("expected > 0, got {}", e.frequency_hz));
   }
   if (e.has_damping() && (e.damping_ratio <= 0 || e.damping_ratio >= 1)) {
-    r.Fail(Member(at, "damping_ratio"), fmt::format("expected in (0, 1), got {}", e.damping_ratio));
+    j.FailAt(Member(j.at(), "damping_ratio"),
+             fmt::format("expected in (0, 1), got {}", e.damping_ratio));
   }
   return e;
 }
 
-bool Boolean(const JsonReader& r, const nlohmann::json& v, const std::string& at) {
-  if (!v.is_boolean()) r.Fail(at, fmt::format("expected true or false, got {}", v.dump()));
-  return v.get<bool>();
+EstimatorKind EstimatorFromJson(const JsonNode& node) {
+  const std::string name = node.String();
+  const auto kind = ParseEstimatorKind(name);
+  if (!kind) node.Fail(fmt::format("unknown estimator \"{}\"", name));
+  return *kind;
+}
+
+// The "record" object: where the values came from.
+void ReadRecord(const JsonNode& rec, MaterialsFile& m) {
+  rec.ExpectObject();
+  if (const auto v = rec.Find("trajectories")) m.trajectories = v->String();
+  m.frame_rate_hz = NullableNumber(rec, "frame_rate_hz");
+  m.release_time_s = NullableNumber(rec, "release_time_s");
+  if (const auto v = rec.Find("release_detected")) m.release_detected = v->Bool();
+  if (const auto v = rec.Find("release_note")) m.release_note = v->String();
+  if (const auto w = rec.Find("window_s")) {
+    if (w->size() != 2) w->Fail("expected [start, end] in seconds");
+    m.window_start_s = w->Item(0).is_null() ? kNaN : w->Item(0).Number();
+    m.window_end_s = w->Item(1).is_null() ? kNaN : w->Item(1).Number();
+  }
+}
+
+LinkMaterial LinkFromJson(const JsonNode& j) {
+  j.ExpectObject();
+  LinkMaterial l;
+  l.child = j.Integer("child");
+  l.parent = j.Integer("parent");
+  if (const auto label = j.Find("label")) l.label = label->String();
+  if (const auto branch = j.Find("branch"); branch && !branch->is_null()) {
+    l.branch = branch->Integer();
+  }
+  if (const auto kind = j.Find("kind")) {
+    const std::string name = kind->String();
+    if (name == ToString(DeflectionKind::kDisplacement)) {
+      l.kind = DeflectionKind::kDisplacement;
+    } else if (name != ToString(DeflectionKind::kRelativeAngle)) {
+      kind->Fail(fmt::format("expected relative_angle or displacement, got \"{}\"", name));
+    }
+  }
+  l.value = EstimateFromJson(j);
+  if (const auto planes = j.Find("planes")) {
+    if (planes->size() != 2) planes->Fail("expected 2 planes (u, w)");
+    for (int c = 0; c < 2; ++c) l.planes[c] = EstimateFromJson(planes->Item(c));
+  } else {
+    l.planes = {l.value, l.value};
+  }
+  if (const auto estimators = j.Find("estimators")) {
+    estimators->ExpectObject();
+    for (const auto& [name, e] : estimators->json().items()) {
+      const JsonNode node(e, estimators->source(), Member(estimators->at(), name));
+      const auto kind = ParseEstimatorKind(name);
+      if (!kind) node.Fail("unknown estimator");
+      l.estimators.emplace_back(*kind, EstimateFromJson(node));
+    }
+  }
+  return l;
+}
+
+BranchMaterial BranchFromJson(const JsonNode& j) {
+  j.ExpectObject();
+  BranchMaterial b;
+  const JsonNode branch = j.Field("branch");
+  b.branch = branch.Integer();
+  if (b.branch < 0) branch.Fail("expected a branch id >= 0");
+  if (const auto marker = j.Find("marker")) b.link_child = marker->Integer();
+  const JsonNode modes = j.Field("modes");
+  if (modes.size() != 3) modes.Fail("expected 3 modes: bend_u, bend_w, twist_v");
+  for (int k = 0; k < 3; ++k) {
+    const JsonNode mj = modes.Item(k).ExpectObject();
+    const JsonNode kind = mj.Field("kind");
+    b.modes[k].kind = ParseModeKind(kind.String(), j.source(), kind.at());
+    if (b.modes[k].kind != static_cast<ModeKind>(k)) {
+      kind.Fail("expected the order bend_u, bend_w, twist_v");
+    }
+    const JsonNode f = mj.Field("frequency_hz"), z = mj.Field("damping_ratio");
+    b.modes[k].frequency_hz = f.Number();
+    b.modes[k].damping_ratio = z.Number();
+    if (!(b.modes[k].frequency_hz > 0)) f.Fail("expected > 0");
+    if (!(b.modes[k].damping_ratio > 0 && b.modes[k].damping_ratio < 1)) {
+      z.Fail("expected in (0, 1)");
+    }
+    if (const auto assumed = mj.Find("assumed")) b.assumed[k] = assumed->Bool();
+  }
+  b.frequency_std_hz = NullableNumber(j, "frequency_std_hz");
+  b.damping_std = NullableNumber(j, "damping_std");
+  return b;
 }
 
 // How sure a link's value is, for choosing among links on one branch (smaller is surer).
@@ -85,11 +168,11 @@ double Uncertainty(const LinkMaterial& link) {
 MaterialsFile MaterialsFromIdentification(const IdentificationResult& result,
                                           const std::string& trajectories_name) {
   MaterialsFile m;
-  m.estimator = ToString(result.estimator);
+  m.estimator = result.estimator;
   m.trajectories = trajectories_name;
   m.frame_rate_hz = result.frame_rate_hz;
   m.release_time_s = result.release.time_s;
-  m.release_detected = result.release.found;
+  m.release_detected = result.release.found();
   m.release_note = result.release.note;
   m.window_start_s = result.window_start_s;
   m.window_end_s = result.window_end_s;
@@ -159,7 +242,7 @@ nlohmann::ordered_json MaterialsToJson(const MaterialsFile& m) {
   ojson doc;
   doc["format"] = kMaterialsFormat;
   doc["version"] = kMaterialsFormatVersion;
-  doc["estimator"] = m.estimator;
+  doc["estimator"] = ToString(m.estimator);
   doc["record"] = {{"trajectories", m.trajectories},
                    {"frame_rate_hz", Number(m.frame_rate_hz)},
                    {"release_time_s", Number(m.release_time_s)},
@@ -217,119 +300,27 @@ nlohmann::ordered_json MaterialsToJson(const MaterialsFile& m) {
   return doc;
 }
 
-MaterialsFile MaterialsFromJson(const nlohmann::json& doc, const std::string& source) {
-  const JsonReader r(source);
-  r.Object(doc, "");
-  const std::string format = r.String(r.Field(doc, "format", ""), "format");
-  if (format != kMaterialsFormat) {
-    r.Fail("format", fmt::format("expected \"{}\", got \"{}\"", kMaterialsFormat, format));
-  }
-  const int version = r.Integer(r.Field(doc, "version", ""), "version");
-  if (version != kMaterialsFormatVersion) {
-    r.Fail("version", fmt::format("expected {}, got {}", kMaterialsFormatVersion, version));
-  }
+MaterialsFile MaterialsFromJson(const nlohmann::json& value, const std::string& source) {
+  const JsonNode doc(value, source);
+  doc.ExpectObject();
+  CheckFormat(doc, kMaterialsFormat, kMaterialsFormatVersion);
   MaterialsFile m;
-  m.estimator = r.String(r.Field(doc, "estimator", ""), "estimator");
-  if (r.Has(doc, "record")) {
-    const auto& rec = r.Object(doc["record"], "record");
-    if (r.Has(rec, "trajectories"))
-      m.trajectories = r.String(rec["trajectories"], "record.trajectories");
-    m.frame_rate_hz = NullableNumber(r, rec, "frame_rate_hz", "record");
-    m.release_time_s = NullableNumber(r, rec, "release_time_s", "record");
-    if (r.Has(rec, "release_detected"))
-      m.release_detected = Boolean(r, rec["release_detected"], "record.release_detected");
-    if (r.Has(rec, "release_note"))
-      m.release_note = r.String(rec["release_note"], "record.release_note");
-    if (r.Has(rec, "window_s")) {
-      const auto& w = r.Array(rec["window_s"], "record.window_s");
-      if (w.size() != 2) r.Fail("record.window_s", "expected [start, end] in seconds");
-      m.window_start_s = w[0].is_null() ? kNaN : r.Number(w[0], "record.window_s[0]");
-      m.window_end_s = w[1].is_null() ? kNaN : r.Number(w[1], "record.window_s[1]");
-    }
-  }
-  const auto& links = r.Array(r.Field(doc, "links", ""), "links");
-  for (size_t i = 0; i < links.size(); ++i) {
-    const std::string at = Element("links", i);
-    const auto& j = r.Object(links[i], at);
-    LinkMaterial l;
-    l.child = r.Integer(r.Field(j, "child", at), Member(at, "child"));
-    l.parent = r.Integer(r.Field(j, "parent", at), Member(at, "parent"));
-    if (r.Has(j, "label")) l.label = r.String(j["label"], Member(at, "label"));
-    if (r.Has(j, "branch") && !j["branch"].is_null()) {
-      l.branch = r.Integer(j["branch"], Member(at, "branch"));
-    }
-    if (r.Has(j, "kind")) {
-      const std::string kind = r.String(j["kind"], Member(at, "kind"));
-      if (kind == ToString(DeflectionKind::kDisplacement)) {
-        l.kind = DeflectionKind::kDisplacement;
-      } else if (kind != ToString(DeflectionKind::kRelativeAngle)) {
-        r.Fail(Member(at, "kind"),
-               fmt::format("expected relative_angle or displacement, got \"{}\"", kind));
-      }
-    }
-    l.value = EstimateFromJson(r, j, at);
-    if (r.Has(j, "planes")) {
-      const auto& planes = r.Array(j["planes"], Member(at, "planes"));
-      if (planes.size() != 2) r.Fail(Member(at, "planes"), "expected 2 planes (u, w)");
-      for (int c = 0; c < 2; ++c) {
-        l.planes[c] = EstimateFromJson(r, planes[c], Element(Member(at, "planes"), c));
-      }
-    } else {
-      l.planes = {l.value, l.value};
-    }
-    if (r.Has(j, "estimators")) {
-      for (const auto& [name, e] : r.Object(j["estimators"], Member(at, "estimators")).items()) {
-        const auto kind = ParseEstimatorKind(name);
-        if (!kind) r.Fail(Member(Member(at, "estimators"), name), "unknown estimator");
-        l.estimators.emplace_back(*kind,
-                                  EstimateFromJson(r, e, Member(Member(at, "estimators"), name)));
-      }
-    }
-    m.links.push_back(std::move(l));
-  }
+  m.estimator = EstimatorFromJson(doc.Field("estimator"));
+  if (const auto record = doc.Find("record")) ReadRecord(*record, m);
+  for (const JsonNode& link : doc.Field("links").Items()) m.links.push_back(LinkFromJson(link));
+  // The summary is recomputed from the links, not read: it cannot disagree with them.
   std::vector<LabeledEstimate> values;
   for (const LinkMaterial& l : m.links) values.push_back({l.label, l.value});
   m.ranges = ComputeRanges(values);
-  if (r.Has(doc, "branches")) {
-    const auto& branches = r.Array(doc["branches"], "branches");
-    for (size_t i = 0; i < branches.size(); ++i) {
-      const std::string at = Element("branches", i);
-      const auto& j = r.Object(branches[i], at);
-      BranchMaterial b;
-      b.branch = r.Integer(r.Field(j, "branch", at), Member(at, "branch"));
-      if (b.branch < 0) r.Fail(Member(at, "branch"), "expected a branch id >= 0");
-      if (r.Has(j, "marker")) b.link_child = r.Integer(j["marker"], Member(at, "marker"));
-      const auto& modes = r.Array(r.Field(j, "modes", at), Member(at, "modes"));
-      if (modes.size() != 3)
-        r.Fail(Member(at, "modes"), "expected 3 modes: bend_u, bend_w, twist_v");
-      for (int k = 0; k < 3; ++k) {
-        const std::string mat = Element(Member(at, "modes"), k);
-        const auto& mj = r.Object(modes[k], mat);
-        b.modes[k].kind = ParseModeKind(r.String(r.Field(mj, "kind", mat), Member(mat, "kind")),
-                                        source, Member(mat, "kind"));
-        if (b.modes[k].kind != static_cast<ModeKind>(k)) {
-          r.Fail(Member(mat, "kind"), "expected the order bend_u, bend_w, twist_v");
-        }
-        b.modes[k].frequency_hz =
-            r.Number(r.Field(mj, "frequency_hz", mat), Member(mat, "frequency_hz"));
-        b.modes[k].damping_ratio =
-            r.Number(r.Field(mj, "damping_ratio", mat), Member(mat, "damping_ratio"));
-        if (!(b.modes[k].frequency_hz > 0)) r.Fail(Member(mat, "frequency_hz"), "expected > 0");
-        if (!(b.modes[k].damping_ratio > 0 && b.modes[k].damping_ratio < 1)) {
-          r.Fail(Member(mat, "damping_ratio"), "expected in (0, 1)");
-        }
-        if (r.Has(mj, "assumed")) b.assumed[k] = Boolean(r, mj["assumed"], Member(mat, "assumed"));
-      }
-      b.frequency_std_hz = NullableNumber(r, j, "frequency_std_hz", at);
-      b.damping_std = NullableNumber(r, j, "damping_std", at);
-      m.branches.push_back(b);
-    }
+  if (const auto branches = doc.Find("branches")) {
+    for (const JsonNode& branch : branches->Items()) m.branches.push_back(BranchFromJson(branch));
   }
   return m;
 }
 
 MaterialsFile ReadMaterialsJson(const std::filesystem::path& path) {
-  return MaterialsFromJson(ParseJson(ReadFile(path), path.string()), path.string());
+  const JsonDocument doc = ReadJsonDocument(path);
+  return MaterialsFromJson(doc.value, doc.source);
 }
 
 void WriteMaterialsJson(const MaterialsFile& materials, const std::filesystem::path& path) {

@@ -44,13 +44,13 @@ struct BranchMaterial {
 };
 
 struct MaterialsFile {
-  std::string estimator = ToString(kDefaultEstimator);
-  std::string trajectories;  // the file it came from
+  EstimatorKind estimator = kDefaultEstimator;  // whose values `value` and `branches` hold
+  std::string trajectories;                     // the file it came from
   double frame_rate_hz = 0.0;
-  double release_time_s = 0.0;
-  bool release_detected = false;
+  double release_time_s = 0.0;    // on the trajectories' clock
+  bool release_detected = false;  // the release was found (detected or given), not assumed
   std::string release_note;
-  double window_start_s = 0.0, window_end_s = 0.0;
+  double window_start_s = 0.0, window_end_s = 0.0;  // the free decay used, s
   std::vector<LinkMaterial> links;
   std::vector<BranchMaterial> branches;
   MaterialRanges ranges;

@@ -1,6 +1,7 @@
 #include "simtree/identification/spectrum_plot.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <vector>
 
@@ -10,6 +11,7 @@
 
 #include "simtree/core/atomic_file.h"
 #include "simtree/core/error.h"
+#include "simtree/identification/detail/option_checks.h"
 
 namespace simtree::identification {
 namespace {
@@ -92,15 +94,19 @@ std::string Format(const ModalEstimate& e) {
   return f + " Hz   " + z;
 }
 
-}  // namespace
+// Signals are drawn in mrad (angles) or mm (displacements).
+constexpr double kScale = 1000.0;
 
-void WriteLinkPlot(const IdentificationResult& result, const LinkIdentification& link,
-                   const std::filesystem::path& path, const SpectrumPlotOptions& options) {
-  cv::Mat image(options.height, options.width, CV_8UC3, kWhite);
-  const DeflectionSignal& d = link.deflection;
+std::string Unit(const DeflectionSignal& d) {
+  return d.kind == DeflectionKind::kRelativeAngle ? "mrad" : "mm";
+}
+
+// The link's name and every estimator's value as text; returns the baseline of the last line.
+int DrawHeader(cv::Mat& image, const IdentificationResult& result, const LinkIdentification& link) {
+  const DeflectionLink& l = link.deflection.link;
   Text(image,
-       fmt::format("link {}   ({} -> {}{})", d.link.label, d.link.parent, d.link.child,
-                   d.link.branch ? fmt::format(", branch {}", *d.link.branch) : ""),
+       fmt::format("link {}   ({} -> {}{})", l.label, l.parent, l.child,
+                   l.branch ? fmt::format(", branch {}", *l.branch) : ""),
        {20, 26}, 0.6);
   int line = 50;
   Text(image, fmt::format("{}: {}", ToString(result.estimator), Format(link.value)), {20, line},
@@ -111,115 +117,167 @@ void WriteLinkPlot(const IdentificationResult& result, const LinkIdentification&
     Text(image, fmt::format("{}: {}", ToString(e.estimator), Format(e.dominant)), {20, line}, 0.45,
          EstimatorColour(e.estimator));
   }
-  if (d.signal.size() < 2) {
-    Text(image, d.problem.empty() ? "no signal" : d.problem, {20, line + 40}, 0.55);
+  return line;
+}
+
+// The damped sinusoid fit's model of channel `c`, on the trimmed record the estimator saw (from
+// its first valid sample).
+void DrawModel(cv::Mat& image, const Panel& panel, const SampledSignal& s,
+               const DampedSinusoidFit& fit, int c) {
+  int first = 0;
+  while (first < s.size() && !s.valid[first]) ++first;
+  const SampledSignal trimmed = s.Slice(first, s.size());
+  const Eigen::MatrixXd model = fit.Evaluate(trimmed);
+  std::vector<double> ty(trimmed.size()), my(trimmed.size());
+  for (int i = 0; i < trimmed.size(); ++i) {
+    ty[i] = trimmed.time_at(i);
+    my[i] = model(i, c) * kScale;
+  }
+  Polyline(image, panel, ty, my, EstimatorColour(EstimatorKind::kDampedSinusoidFit), 1);
+}
+
+// Top panel: both planes' deflection over time, the fitted model over them.
+Panel DrawTimePanel(cv::Mat& image, const LinkIdentification& link, int line,
+                    const SpectrumPlotOptions& options) {
+  const DeflectionSignal& d = link.deflection;
+  const SampledSignal& s = d.signal;
+  Panel time{cv::Rect(70, line + 40, options.width - 100, (options.height - line - 160) / 2),
+             s.start_time_s, s.start_time_s + s.duration_s(), 0, 0};
+  double lo = 1e300, hi = -1e300;
+  for (int i = 0; i < s.size(); ++i) {
+    if (!s.valid[i]) continue;
+    for (int c = 0; c < s.channels(); ++c) {
+      lo = std::min(lo, s.values(i, c) * kScale);
+      hi = std::max(hi, s.values(i, c) * kScale);
+    }
+  }
+  if (!(hi > lo)) {
+    lo -= 1;
+    hi += 1;
+  }
+  time.y0 = lo - 0.05 * (hi - lo);
+  time.y1 = hi + 0.05 * (hi - lo);
+  Axes(image, time, "time (s)",
+       fmt::format("{} ({}): {} blue, {} orange; model over it",
+                   d.kind == DeflectionKind::kRelativeAngle ? "deflection" : "motion", Unit(d),
+                   s.channel_names.size() > 0 ? s.channel_names[0] : "c0",
+                   s.channel_names.size() > 1 ? s.channel_names[1] : "c1"),
+       time.x1 - time.x0 > 12 ? 2.0 : 1.0);
+  std::vector<double> t(s.size());
+  for (int i = 0; i < s.size(); ++i) t[i] = s.time_at(i);
+  const SignalEstimate* fit = link.Find(EstimatorKind::kDampedSinusoidFit);
+  for (int c = 0; c < std::min(2, s.channels()); ++c) {
+    std::vector<double> y(s.size());
+    for (int i = 0; i < s.size(); ++i) y[i] = s.valid[i] ? s.values(i, c) * kScale : NAN;
+    Polyline(image, time, t, y, kChannel[c], 1);
+    if (fit && fit->fit) DrawModel(image, time, s, *fit->fit, c);
+  }
+  return time;
+}
+
+// Each estimator's frequency as a vertical line, and the paper's half-power band on its own
+// (unpadded) spectrum's scale.
+void DrawEstimates(cv::Mat& image, const Panel& spectrum, const LinkIdentification& link) {
+  for (const SignalEstimate& e : link.estimates) {
+    if (!e.dominant.has_frequency()) continue;
+    const cv::Point a = spectrum.At(e.dominant.frequency_hz, spectrum.y0);
+    cv::line(image, a, {a.x, spectrum.box.y}, EstimatorColour(e.estimator), 1, cv::LINE_AA);
+    if (e.estimator == EstimatorKind::kHalfPowerFft && e.dominant.channel >= 0 &&
+        e.dominant.channel < static_cast<int>(e.peaks.size())) {
+      const SpectralPeak& p = e.peaks[e.dominant.channel];
+      if (std::isfinite(p.left_hz) && std::isfinite(p.right_hz)) {
+        const double level = p.peak_amplitude / std::sqrt(2.0) * kScale;
+        cv::line(image, spectrum.At(p.left_hz, std::min(level, spectrum.y1)),
+                 spectrum.At(p.right_hz, std::min(level, spectrum.y1)),
+                 EstimatorColour(e.estimator), 2, cv::LINE_AA);
+      }
+    }
+  }
+}
+
+// Bottom panel: both planes' amplitude spectra, zero-padded and with no window so the paper's
+// peak shows as it saw it, and every estimator's frequency.
+void DrawSpectrumPanel(cv::Mat& image, const LinkIdentification& link, const Panel& time,
+                       const SpectrumPlotOptions& options) {
+  const SampledSignal& s = link.deflection.signal;
+  const double f_dom = link.value.has_frequency() ? link.value.frequency_hz : 1.0;
+  const double nyquist = 0.5 / s.dt;
+  const double f_max = options.max_frequency_hz > 0 ? options.max_frequency_hz
+                                                    : std::min(nyquist, std::max(4.0, 3.0 * f_dom));
+  Panel spectrum{
+      cv::Rect(70, time.box.y + time.box.height + 70, options.width - 100, time.box.height), 0,
+      f_max, 0, 0};
+  const Eigen::MatrixXd filled = s.TrimInvalidEnds().FilledValues();
+  std::vector<AmplitudeSpectrum> spectra;
+  double top = 0;
+  for (int c = 0; c < std::min(2, s.channels()); ++c) {
+    SpectrumOptions so;
+    so.zero_pad_factor = 8;
+    spectra.push_back(ComputeAmplitudeSpectrum(
+        std::vector<double>(filled.col(c).data(), filled.col(c).data() + filled.rows()), s.dt, so));
+    for (int k = 1; k < spectra.back().size(); ++k) {
+      if (spectra.back().frequency(k) <= f_max) {
+        top = std::max(top, spectra.back().amplitude[k] * kScale);
+      }
+    }
+  }
+  spectrum.y1 = top > 0 ? 1.1 * top : 1.0;
+  Axes(image, spectrum, "frequency (Hz)",
+       fmt::format("amplitude spectrum ({}), zero-padded x8; lines: estimated f",
+                   Unit(link.deflection)),
+       f_max > 6 ? 1.0 : 0.5);
+  for (size_t c = 0; c < spectra.size(); ++c) {
+    std::vector<double> x(spectra[c].size()), y(spectra[c].size());
+    for (int k = 0; k < spectra[c].size(); ++k) {
+      x[k] = spectra[c].frequency(k);
+      y[k] = spectra[c].amplitude[k] * kScale;
+    }
+    Polyline(image, spectrum, x, y, kChannel[c], 1);
+  }
+  DrawEstimates(image, spectrum, link);
+}
+
+}  // namespace
+
+void SpectrumPlotOptions::Validate() const {
+  RequireAtLeast(width, 300, "width");
+  RequireAtLeast(height, 300, "height");
+  RequireNonNegative(max_frequency_hz, "max_frequency_hz");
+}
+
+void WriteLinkPlot(const IdentificationResult& result, const LinkIdentification& link,
+                   const std::filesystem::path& path, const SpectrumPlotOptions& options) {
+  options.Validate();
+  cv::Mat image(options.height, options.width, CV_8UC3, kWhite);
+  const int line = DrawHeader(image, result, link);
+  if (link.deflection.signal.size() < 2) {
+    const std::string& problem = link.deflection.problem;
+    Text(image, problem.empty() ? "no signal" : problem, {20, line + 40}, 0.55);
   } else {
-    const SampledSignal& s = d.signal;
-    const bool angle = d.kind == DeflectionKind::kRelativeAngle;
-    const double scale = angle ? 1000.0 : 1000.0;  // mrad or mm
-    const std::string unit = angle ? "mrad" : "mm";
-    // Time panel.
-    Panel time{cv::Rect(70, line + 40, options.width - 100, (options.height - line - 160) / 2),
-               s.start_time_s, s.start_time_s + s.duration_s(), 0, 0};
-    double lo = 1e300, hi = -1e300;
-    for (int i = 0; i < s.size(); ++i) {
-      if (!s.valid[i]) continue;
-      for (int c = 0; c < s.channels(); ++c) {
-        lo = std::min(lo, s.values(i, c) * scale);
-        hi = std::max(hi, s.values(i, c) * scale);
-      }
-    }
-    if (!(hi > lo)) {
-      lo -= 1;
-      hi += 1;
-    }
-    time.y0 = lo - 0.05 * (hi - lo);
-    time.y1 = hi + 0.05 * (hi - lo);
-    Axes(image, time, "time (s)",
-         fmt::format("{} ({}): {} blue, {} orange; model over it", angle ? "deflection" : "motion",
-                     unit, s.channel_names.size() > 0 ? s.channel_names[0] : "c0",
-                     s.channel_names.size() > 1 ? s.channel_names[1] : "c1"),
-         time.x1 - time.x0 > 12 ? 2.0 : 1.0);
-    std::vector<double> t(s.size());
-    for (int i = 0; i < s.size(); ++i) t[i] = s.time_at(i);
-    const SignalEstimate* fit = link.Find(EstimatorKind::kDampedSinusoidFit);
-    for (int c = 0; c < std::min(2, s.channels()); ++c) {
-      std::vector<double> y(s.size());
-      for (int i = 0; i < s.size(); ++i) y[i] = s.valid[i] ? s.values(i, c) * scale : NAN;
-      Polyline(image, time, t, y, kChannel[c], 1);
-      if (fit && fit->fit) {
-        // The model is evaluated on the trimmed record the estimator saw (from its first valid
-        // sample).
-        int first = 0;
-        while (first < s.size() && !s.valid[first]) ++first;
-        const SampledSignal trimmed = s.Slice(first, s.size());
-        const Eigen::MatrixXd model = fit->fit->Evaluate(trimmed);
-        std::vector<double> ty(trimmed.size()), my(trimmed.size());
-        for (int i = 0; i < trimmed.size(); ++i) {
-          ty[i] = trimmed.time_at(i);
-          my[i] = model(i, c) * scale;
-        }
-        Polyline(image, time, ty, my, EstimatorColour(EstimatorKind::kDampedSinusoidFit), 1);
-      }
-    }
-    // Spectrum panel: zero-padded, no window, so the paper's peak is visible as it saw it.
-    const double f_dom = link.value.has_frequency() ? link.value.frequency_hz : 1.0;
-    const double nyquist = 0.5 / s.dt;
-    const double f_max = options.max_frequency_hz > 0
-                             ? options.max_frequency_hz
-                             : std::min(nyquist, std::max(4.0, 3.0 * f_dom));
-    Panel spectrum{
-        cv::Rect(70, time.box.y + time.box.height + 70, options.width - 100, time.box.height), 0,
-        f_max, 0, 0};
-    const Eigen::MatrixXd filled = s.TrimInvalidEnds().FilledValues();
-    std::vector<AmplitudeSpectrum> spectra;
-    double top = 0;
-    for (int c = 0; c < std::min(2, s.channels()); ++c) {
-      SpectrumOptions so;
-      so.zero_pad_factor = 8;
-      spectra.push_back(ComputeAmplitudeSpectrum(
-          std::vector<double>(filled.col(c).data(), filled.col(c).data() + filled.rows()), s.dt,
-          so));
-      for (int k = 1; k < spectra.back().size(); ++k) {
-        if (spectra.back().frequency(k) <= f_max) {
-          top = std::max(top, spectra.back().amplitude[k] * scale);
-        }
-      }
-    }
-    spectrum.y1 = top > 0 ? 1.1 * top : 1.0;
-    Axes(image, spectrum, "frequency (Hz)",
-         fmt::format("amplitude spectrum ({}), zero-padded x8; lines: estimated f", unit),
-         f_max > 6 ? 1.0 : 0.5);
-    for (size_t c = 0; c < spectra.size(); ++c) {
-      std::vector<double> x(spectra[c].size()), y(spectra[c].size());
-      for (int k = 0; k < spectra[c].size(); ++k) {
-        x[k] = spectra[c].frequency(k);
-        y[k] = spectra[c].amplitude[k] * scale;
-      }
-      Polyline(image, spectrum, x, y, kChannel[c], 1);
-    }
-    for (const SignalEstimate& e : link.estimates) {
-      if (!e.dominant.has_frequency()) continue;
-      const cv::Point a = spectrum.At(e.dominant.frequency_hz, spectrum.y0);
-      cv::line(image, a, {a.x, spectrum.box.y}, EstimatorColour(e.estimator), 1, cv::LINE_AA);
-      if (e.estimator == EstimatorKind::kHalfPowerFft && e.dominant.channel >= 0 &&
-          e.dominant.channel < static_cast<int>(e.peaks.size())) {
-        // The paper's half-power band on its own (unpadded) spectrum's scale.
-        const SpectralPeak& p = e.peaks[e.dominant.channel];
-        if (std::isfinite(p.left_hz) && std::isfinite(p.right_hz)) {
-          const double level = p.peak_amplitude / std::sqrt(2.0) * scale;
-          cv::line(image, spectrum.At(p.left_hz, std::min(level, spectrum.y1)),
-                   spectrum.At(p.right_hz, std::min(level, spectrum.y1)),
-                   EstimatorColour(e.estimator), 2, cv::LINE_AA);
-        }
-      }
-    }
+    DrawSpectrumPanel(image, link, DrawTimePanel(image, link, line, options), options);
   }
   std::vector<uchar> png;
   if (!cv::imencode(".png", image, png)) {
     throw IoError(fmt::format("{}: cannot encode the plot as PNG", path.string()));
   }
   WriteFileAtomically(path, std::string(png.begin(), png.end()));
+}
+
+std::string PlotFileName(const std::string& label) {
+  std::string name = label;
+  for (char& c : name) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
+  }
+  return name + ".png";
+}
+
+void WriteLinkPlots(const IdentificationResult& result, const std::filesystem::path& folder,
+                    const SpectrumPlotOptions& options) {
+  AtomicDirectory out(folder);
+  for (const LinkIdentification& link : result.links) {
+    WriteLinkPlot(result, link, out.path() / PlotFileName(link.deflection.link.label), options);
+  }
+  out.Commit();
 }
 
 }  // namespace simtree::identification

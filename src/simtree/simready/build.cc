@@ -11,8 +11,10 @@
 #include "simtree/core/statistics.h"
 #include "simtree/core/units.h"
 #include "simtree/core/validate.h"
+#include "simtree/identification/detail/option_checks.h"
 
 namespace simtree::simready {
+
 double CantileverModeShape(double xi) {
   // beta L of the first mode: the smallest root of 1 + cos(x) cosh(x) = 0.
   constexpr double kBeta = 1.8751040687119611;
@@ -83,34 +85,60 @@ Tree RenumberDepthFirst(const Tree& tree, std::vector<int>* new_id_out) {
   return out;
 }
 
-Tree BuildSimulationReadyTree(const Tree& static_tree,
-                              const identification::MaterialsFile& materials,
-                              const BuildOptions& options, BuildReport* report_out) {
-  BuildReport report;
-  if (static_tree.empty()) throw InputError("tree", "", "the static tree has no branches");
-  if (!(options.wood_density_kg_m3 > 0)) {
-    throw InputError("options", "wood density",
-                     fmt::format("expected > 0 kg/m^3, got {}", options.wood_density_kg_m3));
-  }
-  Tree tree = static_tree;
-  AssignLevels(tree);
-  ComputeFrames(tree);
+void BuildOptions::Validate() const {
+  identification::RequirePositive(wood_density_kg_m3, "wood_density_kg_m3");
+  identification::ValidateMember(interpolation, "interpolation");
+}
 
-  // Which branch each measured link belongs to: its own branch id, or the static tree's marker of
-  // the same id.
+namespace {
+
+// The materials with every measured link's branch found: its own branch id, or the static
+// tree's marker of the same id.
+identification::MaterialsFile MaterialsOnTree(const Tree& tree,
+                                              const identification::MaterialsFile& materials) {
   identification::MaterialsFile m = materials;
-  if (!m.links.empty()) {
-    std::vector<int> marker_branch;
-    for (const Marker& marker : tree.markers) {
-      if (marker.id < 0) continue;
-      if (marker.id >= static_cast<int>(marker_branch.size()))
-        marker_branch.resize(marker.id + 1, -1);
-      marker_branch[marker.id] = marker.branch;
-    }
-    identification::AssignBranchMaterials(m, marker_branch);
+  if (m.links.empty()) return m;
+  std::vector<int> marker_branch;
+  for (const Marker& marker : tree.markers) {
+    if (marker.id < 0) continue;
+    if (marker.id >= static_cast<int>(marker_branch.size()))
+      marker_branch.resize(marker.id + 1, -1);
+    marker_branch[marker.id] = marker.branch;
   }
-  std::vector<bool> measured(tree.size(), false);
+  identification::AssignBranchMaterials(m, marker_branch);
+  return m;
+}
+
+// Why nothing can be built: no link measured, or none on a branch of the tree.
+[[noreturn]] void ThrowNothingMeasured(const identification::MaterialsFile& m) {
+  int with_value = 0;
+  for (const identification::LinkMaterial& l : m.links) {
+    with_value += l.value.status == identification::EstimateStatus::kOk;
+  }
+  throw InputError(
+      "materials", "",
+      with_value == 0
+          ? "no link has a measured value: nothing to build from (see the links' status)"
+          : fmt::format("{} links are measured but none is on a known branch: give markers a "
+                        "\"branch\" in markers.json, or use a static tree whose markers have "
+                        "the same ids",
+                        with_value));
+}
+
+// The measured branches: their dominant values (what the interpolation fits) and the median
+// ratio of each mode's frequency and damping to the dominant one's (how an interpolated branch
+// spreads its value over three modes).
+struct Measured {
+  std::vector<bool> branch;  // per branch of the tree
   std::vector<BranchSample> samples;
+  double mode_f[3] = {0, 0, 0}, mode_z[3] = {0, 0, 0};
+};
+
+// Sets every measured branch's material from `m`; throws when a branch is not in the tree or
+// none is measured.
+Measured ApplyMeasuredMaterials(const identification::MaterialsFile& m, Tree& tree) {
+  Measured out;
+  out.branch.assign(tree.size(), false);
   std::vector<double> ratio_f[3], ratio_z[3];
   for (size_t i = 0; i < m.branches.size(); ++i) {
     const identification::BranchMaterial& b = m.branches[i];
@@ -124,61 +152,75 @@ Tree BuildSimulationReadyTree(const Tree& static_tree,
     material.modes = b.modes;
     material.source = MaterialSource::kMeasured;
     tree.branches[b.branch].material = material;
-    measured[b.branch] = true;
+    out.branch[b.branch] = true;
     // The twist mode carries the link's dominant value (a marker centre cannot see twist).
     const Mode& dominant = b.modes[2];
-    samples.push_back({b.branch, dominant.frequency_hz, dominant.damping_ratio});
+    out.samples.push_back({b.branch, dominant.frequency_hz, dominant.damping_ratio});
     for (int k = 0; k < 3; ++k) {
       ratio_f[k].push_back(b.modes[k].frequency_hz / dominant.frequency_hz);
       ratio_z[k].push_back(b.modes[k].damping_ratio / dominant.damping_ratio);
     }
   }
-  if (samples.empty()) {
-    int with_value = 0;
-    for (const identification::LinkMaterial& l : m.links)
-      with_value += l.value.status == identification::EstimateStatus::kOk;
-    throw InputError(
-        "materials", "",
-        with_value == 0
-            ? "no link has a measured value: nothing to build from (see the links' status)"
-            : fmt::format("{} links are measured but none is on a known branch: give markers a "
-                          "\"branch\" in markers.json, or use a static tree whose markers have "
-                          "the same ids",
-                          with_value));
-  }
-  report.measured = static_cast<int>(samples.size());
-  report.interpolation = FitInterpolationModel(tree, samples, options.interpolation);
-
-  // Unmeasured branches: the interpolated dominant value, spread over the three modes by the
-  // measured branches' median ratios between modes.
-  double mode_f[3], mode_z[3];
+  if (out.samples.empty()) ThrowNothingMeasured(m);
   for (int k = 0; k < 3; ++k) {
-    mode_f[k] = Median(ratio_f[k]);
-    mode_z[k] = Median(ratio_z[k]);
+    out.mode_f[k] = Median(ratio_f[k]);
+    out.mode_z[k] = Median(ratio_z[k]);
   }
+  return out;
+}
+
+// Unmeasured branches: the interpolated dominant value, spread over the three modes by the
+// measured branches' median ratios between modes. Returns how many branches it set.
+int InterpolateUnmeasured(const Measured& measured, const InterpolationModel& model, Tree& tree) {
+  int count = 0;
   for (Branch& b : tree.branches) {
-    if (measured[b.id]) continue;
-    const double f = report.interpolation.Frequency(tree, b.id);
-    const double z = report.interpolation.Damping(b.level);
+    if (measured.branch[b.id]) continue;
+    const double f = model.Frequency(tree, b.id);
+    const double z = model.Damping(b.level);
     Material material;
     for (int k = 0; k < 3; ++k) {
-      material.modes[k].frequency_hz = f * mode_f[k];
-      material.modes[k].damping_ratio = std::min(0.99, z * mode_z[k]);
+      material.modes[k].frequency_hz = f * measured.mode_f[k];
+      material.modes[k].damping_ratio = std::min(0.99, z * measured.mode_z[k]);
     }
     material.source = MaterialSource::kInterpolated;
     b.material = material;
-    ++report.interpolated;
+    ++count;
   }
+  return count;
+}
 
+// Every branch's modal mass and stiffness (paper Eq. 6); returns the whole tree's mass.
+double AssignMassAndStiffness(const BuildOptions& options, Tree& tree) {
+  double total_mass_kg = 0.0;
   const std::vector<double> subtree = SubtreeMasses(tree, options.wood_density_kg_m3);
   for (int b = 0; b < tree.size(); ++b) {
-    if (tree.branches[b].parent < 0) report.total_mass_kg = subtree[b];
+    if (tree.branches[b].parent < 0) total_mass_kg = subtree[b];
     Material& material = *tree.branches[b].material;
     material.mass_kg =
         BranchModalMass(tree, b, options.wood_density_kg_m3,
                         options.include_subtree_mass ? subtree : std::vector<double>{});
     material.stiffness = ModalStiffness(material.mass_kg, material.modes[0].frequency_hz);
   }
+  return total_mass_kg;
+}
+
+}  // namespace
+
+Tree BuildSimulationReadyTree(const Tree& static_tree,
+                              const identification::MaterialsFile& materials,
+                              const BuildOptions& options, BuildReport* report_out) {
+  options.Validate();
+  if (static_tree.empty()) throw InputError("tree", "", "the static tree has no branches");
+  BuildReport report;
+  Tree tree = static_tree;
+  AssignLevels(tree);
+  ComputeFrames(tree);
+  // Measured branches first: the interpolation of the others is fitted on them.
+  const Measured measured = ApplyMeasuredMaterials(MaterialsOnTree(tree, materials), tree);
+  report.measured = static_cast<int>(measured.samples.size());
+  report.interpolation = FitInterpolationModel(tree, measured.samples, options.interpolation);
+  report.interpolated = InterpolateUnmeasured(measured, report.interpolation, tree);
+  report.total_mass_kg = AssignMassAndStiffness(options, tree);
   if (options.renumber_depth_first) tree = RenumberDepthFirst(tree);
   ValidationOptions validation;
   validation.require_materials = true;

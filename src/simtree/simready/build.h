@@ -34,21 +34,24 @@
 namespace simtree::simready {
 
 struct BuildOptions {
-  double wood_density_kg_m3 = 900.0;  // green wood, bark and water included
+  double wood_density_kg_m3 = 900.0;  // green wood, bark and water included, kg/m^3
   // Count the sub-trees riding on a branch in its modal mass (see above).
   bool include_subtree_mass = true;
   // Renumber branches in depth-first pre-order (each sub-tree then has consecutive ids); markers
   // follow their branches.
   bool renumber_depth_first = false;
-  InterpolationOptions interpolation;
+  InterpolationOptions interpolation;  // for the branches no marker measured
+
+  // Throws InputError naming the field ("interpolation.min_branches_cantilever") for a value out
+  // of range.
+  void Validate() const;
 };
 
 struct BuildReport {
-  int measured = 0;
-  int interpolated = 0;
+  int measured = 0;      // branches whose modes come from materials.json
+  int interpolated = 0;  // branches whose modes the interpolation gave
   InterpolationModel interpolation;
-  double total_mass_kg = 0.0;
-  std::vector<std::string> notes;  // e.g. measured values on branches the tree does not have
+  double total_mass_kg = 0.0;  // the whole tree, density times volume
 };
 
 // The first bending mode shape of a uniform Euler-Bernoulli cantilever at xi = s / L in [0, 1],
@@ -63,7 +66,8 @@ double BranchModalMass(const Tree& tree, int branch, double density_kg_m3,
 // Mass of every branch's sub-tree (the branch and all below it), density times volume.
 std::vector<double> SubtreeMasses(const Tree& tree, double density_kg_m3);
 
-// Throws InputError when materials name branches the tree lacks or measure none of its branches.
+// Throws InputError for options out of range, and when materials name branches the tree lacks or
+// measure none of its branches.
 Tree BuildSimulationReadyTree(const Tree& static_tree,
                               const identification::MaterialsFile& materials,
                               const BuildOptions& options = {}, BuildReport* report = nullptr);

@@ -199,6 +199,250 @@ LmResult LevenbergMarquardt(Model m, const Samples& data, int max_iterations) {
   return out;
 }
 
+// The valid samples of `signal`.
+Samples ValidSamples(const SampledSignal& signal) {
+  Samples data;
+  for (int i = 0; i < signal.size(); ++i) {
+    if (!signal.valid[i]) continue;
+    data.t.push_back(i * signal.dt);
+    data.index.push_back(i);
+  }
+  data.y.resize(static_cast<int>(data.t.size()), signal.channels());
+  for (size_t j = 0; j < data.index.size(); ++j) data.y.row(j) = signal.values.row(data.index[j]);
+  return data;
+}
+
+// Bayesian information criterion of a model with `parameters` parameters and residual sum of
+// squares `rss` over `residuals` residuals.
+double Bic(double rss, int parameters, int residuals) {
+  return residuals * std::log(std::max(rss, 1e-300) / residuals) +
+         parameters * std::log(static_cast<double>(residuals));
+}
+
+// The matrix pencil's poles of a record inside the band, as candidates for the model.
+struct PoleFinder {
+  double dt = 0.0;
+  double min_hz = 0.0, max_hz = 0.0;
+  const EstimatorOptions& options;
+
+  // `x`: samples x channels, every sample filled, mean removed.
+  std::vector<Pole> Find(const Eigen::MatrixXd& x) const {
+    std::vector<Pole> poles;
+    for (const std::complex<double>& z : MatrixPencilPoles(x, 2 * options.max_modes + 8)) {
+      if (z.imag() <= 0 || std::abs(z) <= 0) continue;
+      const double s = -std::log(std::abs(z)) / dt;
+      const double w = std::arg(z) / dt;
+      const double f = NaturalHz(s, w), zeta = DampingRatio(s, w);
+      // Slightly growing poles are kept: noise can push a light mode across the unit circle, and
+      // the refinement pulls it back.
+      if (f < min_hz || f > max_hz || zeta > options.max_damping_ratio || zeta < -0.02) continue;
+      poles.push_back({s, w, 0.0});
+    }
+    return poles;
+  }
+};
+
+// What `model` leaves of the record on every sample (zero where the record has a gap).
+Eigen::MatrixXd Residual(const Model& model, const Samples& data, int samples) {
+  const Eigen::MatrixXd fitted = EvaluateModel(model, data.t, nullptr);
+  Eigen::MatrixXd residual = Eigen::MatrixXd::Zero(samples, model.channels);
+  for (size_t j = 0; j < data.index.size(); ++j) {
+    residual.row(data.index[j]) = data.y.row(j) - fitted.row(j);
+  }
+  return residual;
+}
+
+// `offers` ranked by how much of `residual` each explains alone (strongest first).
+std::vector<Pole> RankOffers(std::vector<Pole> offers, const Eigen::MatrixXd& residual,
+                             const Samples& data) {
+  const int n = static_cast<int>(data.t.size());
+  for (Pole& pole : offers) {
+    Eigen::MatrixXd x(n, 2);
+    for (int j = 0; j < n; ++j) {
+      const double e = std::exp(-pole.decay_rate * data.t[j]);
+      x(j, 0) = e * std::cos(pole.omega * data.t[j]);
+      x(j, 1) = e * std::sin(pole.omega * data.t[j]);
+    }
+    Eigen::MatrixXd r(n, residual.cols());
+    for (int j = 0; j < n; ++j) r.row(j) = residual.row(data.index[j]);
+    const Eigen::MatrixXd coef = x.colPivHouseholderQr().solve(r);
+    pole.amplitude = (x * coef).norm();
+  }
+  std::stable_sort(offers.begin(), offers.end(),
+                   [](const Pole& a, const Pole& b) { return a.amplitude > b.amplitude; });
+  return offers;
+}
+
+// `base` with `pole` added, everything refitted.
+LmResult FitWithPole(const Model& base, const Pole& pole, const Samples& data,
+                     const EstimatorOptions& options) {
+  Model m{base.modes + 1, base.channels, {}};
+  m.p = Eigen::VectorXd::Zero(m.size());
+  for (int k = 0; k < base.modes; ++k) {
+    m.s(k) = base.p[2 * k];
+    m.w(k) = base.p[2 * k + 1];
+  }
+  m.s(base.modes) = pole.decay_rate;
+  m.w(base.modes) = pole.omega;
+  SolveLinear(m, data);
+  return LevenbergMarquardt(m, data, options.max_iterations);
+}
+
+// Forward selection: start from the offsets alone; at each step offer the strongest poles the
+// matrix pencil finds in the current residual (and in the record), keep the addition that lowers
+// the BIC most, refit everything, and stop when no addition lowers it. Working on the residual
+// lets a second pole emerge beside a strong one that first absorbed a close pair.
+LmResult SelectModes(const Samples& data, int samples, const PoleFinder& finder,
+                     const std::vector<Pole>& record_poles, const EstimatorOptions& options) {
+  const int channels = static_cast<int>(data.y.cols());
+  const int residual_count = static_cast<int>(data.t.size()) * channels;
+  LmResult best;
+  best.model = Model{0, channels, Eigen::VectorXd::Zero(channels)};
+  SolveLinear(best.model, data);
+  best.rss = SumOfSquares(best.model, data);
+  best.converged = true;
+  double best_bic = Bic(best.rss, best.model.size(), residual_count);
+  constexpr int kTrialsPerStep = 3;
+  for (int step = 0; step < options.max_modes; ++step) {
+    if (residual_count <= Model{step + 1, channels, {}}.size() + 2) break;
+    const Eigen::MatrixXd residual = Residual(best.model, data, samples);
+    std::vector<Pole> offers = finder.Find(residual);
+    offers.insert(offers.end(), record_poles.begin(), record_poles.end());
+    offers = RankOffers(std::move(offers), residual, data);
+    LmResult step_best;
+    double step_bic = std::numeric_limits<double>::infinity();
+    for (int trial = 0; trial < std::min<int>(kTrialsPerStep, offers.size()); ++trial) {
+      LmResult fit = FitWithPole(best.model, offers[trial], data, options);
+      const double bic = Bic(fit.rss, fit.model.size(), residual_count);
+      if (bic < step_bic) {
+        step_bic = bic;
+        step_best = std::move(fit);
+      }
+    }
+    if (!(step_bic < best_bic)) break;
+    best_bic = step_bic;
+    best = std::move(step_best);
+  }
+  return best;
+}
+
+// A sampled sinusoid at w and at 2 pi / dt - w (or w + 2 pi k / dt) gives the same samples, and
+// a long Levenberg-Marquardt step can land on an alias: every mode is folded back into
+// [0, pi / dt].
+void FoldAliases(Model& model, double dt) {
+  const double sampling = kTwoPi / dt;
+  for (int k = 0; k < model.modes; ++k) {
+    double w = std::fmod(model.w(k), sampling);
+    if (w < 0) w += sampling;
+    bool flip = false;
+    if (w > 0.5 * sampling) {
+      w = sampling - w;
+      flip = true;
+    }
+    model.w(k) = w;
+    if (flip) {
+      for (int c = 0; c < model.channels; ++c) model.p[model.a_index(c, k) + 1] *= -1;
+    }
+  }
+}
+
+// The parameters' covariance at a solution: the inverse of J^T J (directions it cannot resolve
+// get an infinite variance), scaled by the residual variance and inflated by (1 + rho) / (1 - rho)
+// for residuals with lag-1 autocorrelation rho.
+class ParameterCovariance {
+ public:
+  ParameterCovariance(const LmResult& fit, const Samples& data) {
+    const Model& m = fit.model;
+    const int n = static_cast<int>(data.t.size());
+    Eigen::MatrixXd jac;
+    const Eigen::MatrixXd residual = data.y - EvaluateModel(m, data.t, &jac);
+    const int residual_count = n * m.channels;
+    const int dof = std::max(1, residual_count - m.size());
+    variance_ = fit.rss / dof;
+    double lag0 = 0, lag1 = 0;
+    for (int c = 0; c < m.channels; ++c) {
+      for (int j = 0; j < n; ++j) {
+        lag0 += residual(j, c) * residual(j, c);
+        if (j + 1 < n && data.index[j + 1] == data.index[j] + 1) {
+          lag1 += residual(j, c) * residual(j + 1, c);
+        }
+      }
+    }
+    rho_ = lag0 > 0 ? std::clamp(lag1 / lag0, 0.0, 0.95) : 0.0;
+    inflation_ = (1 + rho_) / (1 - rho_);
+    eig_.compute(jac.transpose() * jac);
+    const Eigen::VectorXd ev = eig_.eigenvalues();
+    const double cutoff = ev.maxCoeff() * 1e-14;
+    inv_ev_.resize(ev.size());
+    for (int i = 0; i < ev.size(); ++i) {
+      inv_ev_[i] = ev[i] > cutoff ? 1.0 / ev[i] : std::numeric_limits<double>::infinity();
+    }
+  }
+
+  double operator()(int i, int j) const {
+    double sum = 0;
+    for (int q = 0; q < inv_ev_.size(); ++q) {
+      const double vi = eig_.eigenvectors()(i, q), vj = eig_.eigenvectors()(j, q);
+      if (vi * vj != 0) sum += vi * vj * inv_ev_[q];
+    }
+    return sum * variance_ * inflation_;
+  }
+  double residual_correlation() const { return rho_; }
+
+ private:
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig_;
+  Eigen::VectorXd inv_ev_;
+  double variance_ = 0.0, rho_ = 0.0, inflation_ = 1.0;
+};
+
+// Mode k of a fitted model with its amplitudes and its pole's standard deviations.
+FittedMode ModeOf(const Model& m, int k, const ParameterCovariance& covariance) {
+  FittedMode mode;
+  const int channels = m.channels;
+  const double s = m.p[2 * k];
+  double w = m.p[2 * k + 1];
+  mode.cos_amplitude.resize(channels);
+  mode.sin_amplitude.resize(channels);
+  mode.channel_amplitude.resize(channels);
+  for (int c = 0; c < channels; ++c) {
+    mode.cos_amplitude[c] = m.p[m.a_index(c, k)];
+    mode.sin_amplitude[c] = m.p[m.a_index(c, k) + 1];
+  }
+  if (w < 0) {  // the same oscillation with the sine terms negated
+    w = -w;
+    mode.sin_amplitude = -mode.sin_amplitude;
+  }
+  for (int c = 0; c < channels; ++c) {
+    mode.channel_amplitude[c] = std::hypot(mode.cos_amplitude[c], mode.sin_amplitude[c]);
+  }
+  mode.amplitude = mode.channel_amplitude.norm();
+  const double csw = covariance(2 * k, 2 * k + 1);
+  Eigen::Matrix2d cov;
+  cov << covariance(2 * k, 2 * k), csw, csw, covariance(2 * k + 1, 2 * k + 1);
+  SetPole(s, w, cov, mode);
+  return mode;
+}
+
+// The fit's report of a selected model: its modes, strongest first, with standard deviations.
+DampedSinusoidFit Describe(const LmResult& best, const Samples& data, int candidates) {
+  const Model& m = best.model;
+  const ParameterCovariance covariance(best, data);
+  DampedSinusoidFit out;
+  out.candidates = candidates;
+  out.converged = best.converged;
+  out.iterations = best.iterations;
+  out.rms_residual = std::sqrt(best.rss / (static_cast<int>(data.t.size()) * m.channels));
+  out.residual_correlation = covariance.residual_correlation();
+  out.offsets.resize(m.channels);
+  for (int c = 0; c < m.channels; ++c) out.offsets[c] = m.p[m.offset_index(c)];
+  for (int k = 0; k < m.modes; ++k) out.modes.push_back(ModeOf(m, k, covariance));
+  std::stable_sort(
+      out.modes.begin(), out.modes.end(),
+      [](const FittedMode& a, const FittedMode& b) { return a.amplitude > b.amplitude; });
+  if (!best.converged) out.message = fmt::format("stopped after {} iterations", best.iterations);
+  return out;
+}
+
 }  // namespace
 
 Eigen::MatrixXd DampedSinusoidFit::Evaluate(const SampledSignal& signal) const {
@@ -222,103 +466,20 @@ Eigen::MatrixXd DampedSinusoidFit::Evaluate(const SampledSignal& signal) const {
 DampedSinusoidFit FitDampedSinusoids(const SampledSignal& signal, double min_hz, double max_hz,
                                      const EstimatorOptions& options) {
   DampedSinusoidFit out;
-  const int channels = signal.channels();
-  Samples data;
-  for (int i = 0; i < signal.size(); ++i) {
-    if (!signal.valid[i]) continue;
-    data.t.push_back(i * signal.dt);
-    data.index.push_back(i);
-  }
-  data.y.resize(static_cast<int>(data.t.size()), channels);
-  for (size_t j = 0; j < data.index.size(); ++j) data.y.row(j) = signal.values.row(data.index[j]);
+  const Samples data = ValidSamples(signal);
   const int n = static_cast<int>(data.t.size());
   if (n < 8) {
     out.message = fmt::format("{} valid samples are too few for a fit", n);
     return out;
   }
-
-  // Forward selection: start from the offsets alone; at each step offer the strongest poles the
-  // matrix pencil finds in the current residual (and in the record), keep the addition that lowers
-  // the BIC most, refit everything, and stop when no addition lowers it. Working on the residual
-  // lets a second pole emerge beside a strong one that first absorbed a close pair.
-  const int residual_count = n * channels;
-  auto bic_of = [&](double rss, int parameters) {
-    return residual_count * std::log(std::max(rss, 1e-300) / residual_count) +
-           parameters * std::log(static_cast<double>(residual_count));
-  };
-  auto band_poles = [&](const Eigen::MatrixXd& x) {
-    std::vector<Pole> poles;
-    for (const std::complex<double>& z : MatrixPencilPoles(x, 2 * options.max_modes + 8)) {
-      if (z.imag() <= 0 || std::abs(z) <= 0) continue;
-      const double s = -std::log(std::abs(z)) / signal.dt;
-      const double w = std::arg(z) / signal.dt;
-      const double f = NaturalHz(s, w), zeta = DampingRatio(s, w);
-      // Slightly growing poles are kept: noise can push a light mode across the unit circle, and
-      // the refinement pulls it back.
-      if (f < min_hz || f > max_hz || zeta > options.max_damping_ratio || zeta < -0.02) continue;
-      poles.push_back({s, w, 0.0});
-    }
-    return poles;
-  };
+  // Candidate poles of the whole record, offered at every step of the selection.
+  const PoleFinder finder{signal.dt, min_hz, max_hz, options};
   Eigen::MatrixXd filled = signal.FilledValues();
   filled.rowwise() -= filled.colwise().mean();
-  const std::vector<Pole> record_poles = band_poles(filled);
+  const std::vector<Pole> record_poles = finder.Find(filled);
   out.candidates = static_cast<int>(record_poles.size());
 
-  LmResult best;
-  best.model = Model{0, channels, Eigen::VectorXd::Zero(channels)};
-  SolveLinear(best.model, data);
-  best.rss = SumOfSquares(best.model, data);
-  best.converged = true;
-  double best_bic = bic_of(best.rss, best.model.size());
-  constexpr int kTrialsPerStep = 3;
-  for (int step = 0; step < options.max_modes; ++step) {
-    if (residual_count <= Model{step + 1, channels, {}}.size() + 2) break;
-    // The residual on every sample (zero where the record has a gap).
-    const Eigen::MatrixXd fitted = EvaluateModel(best.model, data.t, nullptr);
-    Eigen::MatrixXd residual = Eigen::MatrixXd::Zero(signal.size(), channels);
-    for (int j = 0; j < n; ++j) residual.row(data.index[j]) = data.y.row(j) - fitted.row(j);
-    std::vector<Pole> offers = band_poles(residual);
-    offers.insert(offers.end(), record_poles.begin(), record_poles.end());
-    // Rank the offers by how much of the residual each explains alone.
-    for (Pole& pole : offers) {
-      Eigen::MatrixXd x(n, 2);
-      for (int j = 0; j < n; ++j) {
-        const double e = std::exp(-pole.decay_rate * data.t[j]);
-        x(j, 0) = e * std::cos(pole.omega * data.t[j]);
-        x(j, 1) = e * std::sin(pole.omega * data.t[j]);
-      }
-      Eigen::MatrixXd r(n, channels);
-      for (int j = 0; j < n; ++j) r.row(j) = residual.row(data.index[j]);
-      const Eigen::MatrixXd coef = x.colPivHouseholderQr().solve(r);
-      pole.amplitude = (x * coef).norm();
-    }
-    std::stable_sort(offers.begin(), offers.end(),
-                     [](const Pole& a, const Pole& b) { return a.amplitude > b.amplitude; });
-    LmResult step_best;
-    double step_bic = std::numeric_limits<double>::infinity();
-    for (int trial = 0; trial < std::min<int>(kTrialsPerStep, offers.size()); ++trial) {
-      const Model& base = best.model;
-      Model m{base.modes + 1, channels, {}};
-      m.p = Eigen::VectorXd::Zero(m.size());
-      for (int k = 0; k < base.modes; ++k) {
-        m.s(k) = base.p[2 * k];
-        m.w(k) = base.p[2 * k + 1];
-      }
-      m.s(base.modes) = offers[trial].decay_rate;
-      m.w(base.modes) = offers[trial].omega;
-      SolveLinear(m, data);
-      LmResult fit = LevenbergMarquardt(m, data, options.max_iterations);
-      const double bic = bic_of(fit.rss, m.size());
-      if (bic < step_bic) {
-        step_bic = bic;
-        step_best = std::move(fit);
-      }
-    }
-    if (!(step_bic < best_bic)) break;
-    best_bic = step_bic;
-    best = std::move(step_best);
-  }
+  LmResult best = SelectModes(data, signal.size(), finder, record_poles, options);
   if (best.model.modes == 0) {
     out.message =
         record_poles.empty()
@@ -326,95 +487,8 @@ DampedSinusoidFit FitDampedSinusoids(const SampledSignal& signal, double min_hz,
             : "no damped sinusoid explains the record better than a constant";
     return out;
   }
-
-  // A sampled sinusoid at w and at 2 pi / dt - w (or w + 2 pi k / dt) gives the same samples, and
-  // a long Levenberg-Marquardt step can land on an alias: fold every mode back into [0, pi / dt].
-  Model& folded = best.model;
-  const double sampling = kTwoPi / signal.dt;
-  for (int k = 0; k < folded.modes; ++k) {
-    double w = std::fmod(folded.w(k), sampling);
-    if (w < 0) w += sampling;
-    bool flip = false;
-    if (w > 0.5 * sampling) {
-      w = sampling - w;
-      flip = true;
-    }
-    folded.w(k) = w;
-    if (flip) {
-      for (int c = 0; c < channels; ++c) folded.p[folded.a_index(c, k) + 1] *= -1;
-    }
-  }
-
-  // Covariance of the parameters at the solution.
-  const Model& m = best.model;
-  Eigen::MatrixXd jac;
-  const Eigen::MatrixXd model = EvaluateModel(m, data.t, &jac);
-  const Eigen::MatrixXd residual = data.y - model;
-  const int dof = std::max(1, residual_count - m.size());
-  const double variance = best.rss / dof;
-  double lag0 = 0, lag1 = 0;
-  for (int c = 0; c < channels; ++c) {
-    for (int j = 0; j < n; ++j) {
-      lag0 += residual(j, c) * residual(j, c);
-      if (j + 1 < n && data.index[j + 1] == data.index[j] + 1) {
-        lag1 += residual(j, c) * residual(j + 1, c);
-      }
-    }
-  }
-  const double rho = lag0 > 0 ? std::clamp(lag1 / lag0, 0.0, 0.95) : 0.0;
-  const double inflation = (1 + rho) / (1 - rho);
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(jac.transpose() * jac);
-  const Eigen::VectorXd ev = eig.eigenvalues();
-  const double cutoff = ev.maxCoeff() * 1e-14;
-  Eigen::VectorXd inv_ev(ev.size());
-  for (int i = 0; i < ev.size(); ++i) {
-    inv_ev[i] = ev[i] > cutoff ? 1.0 / ev[i] : std::numeric_limits<double>::infinity();
-  }
-  auto covariance = [&](int i, int j) {
-    double sum = 0;
-    for (int q = 0; q < ev.size(); ++q) {
-      const double vi = eig.eigenvectors()(i, q), vj = eig.eigenvectors()(j, q);
-      if (vi * vj != 0) sum += vi * vj * inv_ev[q];
-    }
-    return sum * variance * inflation;
-  };
-
-  out.converged = best.converged;
-  out.iterations = best.iterations;
-  out.rms_residual = std::sqrt(best.rss / residual_count);
-  out.residual_correlation = rho;
-  out.offsets.resize(channels);
-  for (int c = 0; c < channels; ++c) out.offsets[c] = m.p[m.offset_index(c)];
-  for (int k = 0; k < m.modes; ++k) {
-    FittedMode mode;
-    const double s = m.p[2 * k];
-    double w = m.p[2 * k + 1];
-    mode.cos_amplitude.resize(channels);
-    mode.sin_amplitude.resize(channels);
-    mode.channel_amplitude.resize(channels);
-    for (int c = 0; c < channels; ++c) {
-      mode.cos_amplitude[c] = m.p[m.a_index(c, k)];
-      mode.sin_amplitude[c] = m.p[m.a_index(c, k) + 1];
-    }
-    if (w < 0) {  // the same oscillation with the sine terms negated
-      w = -w;
-      mode.sin_amplitude = -mode.sin_amplitude;
-    }
-    for (int c = 0; c < channels; ++c) {
-      mode.channel_amplitude[c] = std::hypot(mode.cos_amplitude[c], mode.sin_amplitude[c]);
-    }
-    mode.amplitude = mode.channel_amplitude.norm();
-    const double csw = covariance(2 * k, 2 * k + 1);
-    Eigen::Matrix2d cov;
-    cov << covariance(2 * k, 2 * k), csw, csw, covariance(2 * k + 1, 2 * k + 1);
-    SetPole(s, w, cov, mode);
-    out.modes.push_back(std::move(mode));
-  }
-  std::stable_sort(
-      out.modes.begin(), out.modes.end(),
-      [](const FittedMode& a, const FittedMode& b) { return a.amplitude > b.amplitude; });
-  if (!best.converged) out.message = fmt::format("stopped after {} iterations", best.iterations);
-  return out;
+  FoldAliases(best.model, signal.dt);
+  return Describe(best, data, out.candidates);
 }
 
 void SetPole(double decay_rate, double angular_frequency, const Eigen::Matrix2d& covariance,

@@ -51,25 +51,42 @@ struct DeflectionOptions {
   // held level (OpenCV y points down). Only the naming of the two planes depends on it.
   Eigen::Vector3d camera_up = -Eigen::Vector3d::UnitY();
   // The rest pose is the mean over this last share of the frames given (the decay's tail, where
-  // the swing is smallest and averages out over whole cycles).
+  // the swing is smallest and averages out over whole cycles), in (0, 1].
   double rest_fraction = 0.5;
+
+  // Throws InputError naming the field for a value out of range.
+  void Validate() const;
 };
+
+// Whether a link has a signal, and why not.
+enum class DeflectionStatus {
+  kOk,
+  kMissingTrajectory,  // a marker of the link is in the marker list but has no trajectory
+  kTooFewFrames,       // fewer than 2 frames in the record
+  kNoRestPose,         // a marker of the link is never valid at the end of the record
+  kCoincidentMarkers,  // the link's two markers coincide at rest: no direction
+};
+// "ok", "missing_trajectory", "too_few_frames", "no_rest_pose", "coincident_markers".
+const char* ToString(DeflectionStatus status);
 
 struct DeflectionSignal {
   DeflectionLink link;
   DeflectionKind kind = DeflectionKind::kRelativeAngle;
   // Two channels: theta_u, theta_w (rad), or d_1, d_2 (m) for a displacement. Empty (zero
-  // samples) when `problem` is set.
+  // samples) unless `status` is kOk.
   SampledSignal signal;
   Eigen::Vector3d u = Eigen::Vector3d::Zero(), v = Eigen::Vector3d::Zero(),
                   w = Eigen::Vector3d::Zero();  // rest frame, camera coordinates
   double rest_length_m = 0.0;                   // parent marker to child marker at rest
-  std::string problem;  // why there is no signal ("marker 7 has no trajectory", ...)
+  DeflectionStatus status = DeflectionStatus::kOk;
+  std::string problem;  // why there is no signal, for a person ("marker 7 has no trajectory")
+
+  bool ok() const { return status == DeflectionStatus::kOk; }
 };
 
 // The deflection of every link over frames [first_frame, end_frame) of `trajectories`
 // (end_frame < 0: to the end). A link whose markers have no track, or no valid rest pose, gets an
-// empty signal and a `problem`; `source` names the trajectories in messages.
+// empty signal, a `status` and a `problem`.
 std::vector<DeflectionSignal> ComputeDeflectionSignals(const Trajectories& trajectories,
                                                        const std::vector<DeflectionLink>& links,
                                                        int first_frame, int end_frame,

@@ -10,6 +10,7 @@
 #include <Eigen/SVD>
 
 #include "simtree/core/units.h"
+#include "simtree/identification/detail/option_checks.h"
 
 namespace simtree::identification {
 namespace {
@@ -237,48 +238,88 @@ void SplitMergedPoles(const std::vector<LinkSamples>& links, int link_channels, 
   }
 }
 
-}  // namespace
+// The links' records stacked side by side, each gaps filled, mean removed and scaled to unit RMS
+// (every link weighs the same), reduced to their strongest principal components.
+struct Components {
+  SampledSignal components;    // one channel per component, every sample valid
+  std::vector<double> scales;  // per link: 1 / its RMS
+  int channels = 0;            // of every link together
+};
 
-JointPoles EstimateJointPoles(const std::vector<SampledSignal>& signals,
-                              const EstimatorOptions& estimation,
-                              const JointPolesOptions& options) {
-  JointPoles out;
-  if (signals.empty()) {
-    out.message = "no link to fit joint poles to";
-    return out;
-  }
+Components StackedComponents(const std::vector<SampledSignal>& signals,
+                             const JointPolesOptions& options) {
+  Components out;
   const SampledSignal& first = signals.front();
-  int channels = 0;
   for (const SampledSignal& s : signals) {
     if (s.size() != first.size() || s.dt != first.dt || s.start_time_s != first.start_time_s) {
       throw std::invalid_argument("joint poles: the links' records are not on the same grid");
     }
-    channels += s.channels();
+    out.channels += s.channels();
   }
-  // Each link's record, gaps filled and mean removed, over its RMS: every link weighs the same.
-  Eigen::MatrixXd stacked(first.size(), channels);
+  Eigen::MatrixXd stacked(first.size(), out.channels);
   int column = 0;
-  std::vector<double> scales;
   for (const SampledSignal& s : signals) {
     Eigen::MatrixXd x = s.FilledValues();
     x.rowwise() -= x.colwise().mean();
     const double rms = std::sqrt(x.squaredNorm() / std::max<Eigen::Index>(1, x.size()));
-    scales.push_back(rms > 0 ? 1.0 / rms : 1.0);
-    x *= scales.back();
+    out.scales.push_back(rms > 0 ? 1.0 / rms : 1.0);
+    x *= out.scales.back();
     stacked.middleCols(column, s.channels()) = x;
     column += s.channels();
   }
   Eigen::BDCSVD<Eigen::MatrixXd> svd(stacked, Eigen::ComputeThinU);
   const int components =
       std::min<int>(options.components, static_cast<int>(svd.singularValues().size()));
-  SampledSignal pcs;
+  SampledSignal& pcs = out.components;
   pcs.start_time_s = first.start_time_s;
   pcs.dt = first.dt;
   pcs.values =
       svd.matrixU().leftCols(components) * svd.singularValues().head(components).asDiagonal();
   pcs.valid.assign(first.size(), true);
   for (int c = 0; c < components; ++c) pcs.channel_names.push_back(fmt::format("pc{}", c + 1));
+  return out;
+}
 
+// Every link's valid samples, scaled like the stack.
+std::vector<LinkSamples> ScaledValidSamples(const std::vector<SampledSignal>& signals,
+                                            const std::vector<double>& scales) {
+  std::vector<LinkSamples> samples;
+  for (size_t i = 0; i < signals.size(); ++i) {
+    const SampledSignal& s = signals[i];
+    LinkSamples l;
+    const std::vector<int> rows = ValidRows(s);
+    l.y.resize(static_cast<int>(rows.size()), s.channels());
+    for (size_t j = 0; j < rows.size(); ++j) {
+      l.t.push_back(rows[j] * s.dt);
+      l.y.row(j) = s.values.row(rows[j]) * scales[i];
+    }
+    samples.push_back(std::move(l));
+  }
+  return samples;
+}
+
+}  // namespace
+
+void JointPolesOptions::Validate() const {
+  RequireAtLeast(components, 1, "components");
+  RequireAtLeast(max_modes, 1, "max_modes");
+  RequireOption(min_split >= 0 && min_split < 1, "min_split", "a relative frequency in [0, 1)",
+                min_split);
+}
+
+JointPoles EstimateJointPoles(const std::vector<SampledSignal>& signals,
+                              const EstimatorOptions& estimation,
+                              const JointPolesOptions& options) {
+  estimation.Validate();
+  options.Validate();
+  JointPoles out;
+  if (signals.empty()) {
+    out.message = "no link to fit joint poles to";
+    return out;
+  }
+  // How many modes and where to start: estimator (c) on the links' principal components.
+  const Components stack = StackedComponents(signals, options);
+  const SampledSignal& pcs = stack.components;
   const double record_s = pcs.duration_s();
   const auto [min_hz, max_hz] = BandOf(estimation, record_s, pcs.dt);
   EstimatorOptions fit_options = estimation;
@@ -288,34 +329,24 @@ JointPoles EstimateJointPoles(const std::vector<SampledSignal>& signals,
     out.message = "joint poles: " + out.fit.message;
     return out;
   }
-  int splits = 0;
-  {
-    std::vector<LinkSamples> samples;
-    for (size_t i = 0; i < signals.size(); ++i) {
-      const SampledSignal& s = signals[i];
-      LinkSamples l;
-      const std::vector<int> rows = ValidRows(s);
-      l.y.resize(static_cast<int>(rows.size()), s.channels());
-      for (size_t j = 0; j < rows.size(); ++j) {
-        l.t.push_back(rows[j] * s.dt);
-        l.y.row(j) = s.values.row(rows[j]) * scales[i];
-      }
-      samples.push_back(std::move(l));
-    }
-    const int modes = static_cast<int>(out.fit.modes.size());
-    Refinement refined = RefinePoles(samples, channels * (1 + 2 * modes), out.fit);
-    if (options.split_merged_poles) {
-      SplitMergedPoles(samples, channels, record_s, options, refined, out.fit);
-      splits = static_cast<int>(out.fit.modes.size()) - modes;
-    }
+  // The poles refined on every link's own valid samples, merged poles split.
+  const std::vector<LinkSamples> samples = ScaledValidSamples(signals, stack.scales);
+  const int modes = static_cast<int>(out.fit.modes.size());
+  Refinement refined = RefinePoles(samples, stack.channels * (1 + 2 * modes), out.fit);
+  if (options.split_merged_poles) {
+    SplitMergedPoles(samples, stack.channels, record_s, options, refined, out.fit);
+    out.splits = static_cast<int>(out.fit.modes.size()) - modes;
   }
   out.ok = true;
-  out.message = fmt::format("joint poles of {} links: {} modes on {} principal components{}",
-                            signals.size(), out.fit.modes.size(), components,
-                            splits > 0 ? fmt::format(", {} split on every link", splits) : "");
+  out.message =
+      fmt::format("joint poles of {} links: {} modes on {} principal components{}", signals.size(),
+                  out.fit.modes.size(), pcs.channels(),
+                  out.splits > 0 ? fmt::format(", {} split on every link", out.splits) : "");
+  // Each link reads the joint poles with its own amplitudes.
   for (const SampledSignal& s : signals) {
     SignalEstimate e;
     e.estimator = EstimatorKind::kDampedSinusoidFit;
+    e.joint_poles = true;
     e.duration_s = record_s;
     e.noise_level = EstimateNoiseLevel(s).maxCoeff();
     ReadFittedModes(FitAmplitudes(s, out.fit), s.channels(), record_s, min_hz, max_hz, estimation,

@@ -23,9 +23,8 @@
 // offered split in two and refined on every link; the split is kept when the joint BIC falls
 // (SplitMergedPoles in joint_poles.cc).
 //
-// Measured on the synthetic bench (docs/identification.md, "Joint poles across links"): with a
-// tracker's error the pooled damping error is half that of per-link fits or less, so `identify`
-// reads the links this way by default (`--per-link` turns it off).
+// `identify` reads the links this way by default (`--per-link` turns it off); why, with the
+// figures: docs/identification.md, "Joint poles across links".
 
 #include <string>
 #include <vector>
@@ -37,18 +36,24 @@ namespace simtree::identification {
 
 struct JointPolesOptions {
   int components = 6;  // principal components of the stacked links the poles are fitted on
-  // Most modes of the joint model (chosen by BIC). Error-free records use them all (the release
-  // excites the higher modes too); 12 left a spurious pole on the synthetic magnolia 1.
+  // Most modes of the joint model (chosen by BIC; it replaces EstimatorOptions::max_modes for
+  // the joint fit). Error-free records use many (the release excites the higher modes too), and
+  // too low a limit leaves room for a spurious pole.
   int max_modes = 20;
   // Offer every pole split in two, refined on every link, kept when the joint BIC falls
-  // (SplitMergedPoles in joint_poles.cc); a split closer than `min_split` (relative) is none.
+  // (SplitMergedPoles in joint_poles.cc); a split closer than `min_split` (relative frequency)
+  // is none.
   bool split_merged_poles = true;
   double min_split = 0.002;
+
+  // Throws InputError naming the field for a value out of range.
+  void Validate() const;
 };
 
 struct JointPoles {
-  bool ok = false;
+  bool ok = false;      // poles were fitted (false: `message` says why not)
   std::string message;  // why there are no joint poles, or what was fitted
+  int splits = 0;       // poles added by splitting merged ones
   // The fit on the principal components, its poles (and their standard deviations) replaced by
   // the refined ones; its amplitudes are the components' before refinement.
   DampedSinusoidFit fit;

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "simtree/core/statistics.h"
+#include "simtree/identification/detail/option_checks.h"
 
 namespace simtree::identification {
 namespace {
@@ -115,15 +116,43 @@ MarkerRelease ReleaseOf(const MarkerMotion& m, int hold_frames, const ReleaseOpt
 
 }  // namespace
 
+void ReleaseOptions::Validate() const {
+  RequireOption(swing_fraction > 0 && swing_fraction <= 1, "swing_fraction",
+                "a share of the peak speed in (0, 1]", swing_fraction);
+  RequireShare(quiet_fraction, "quiet_fraction");
+  RequireOption(quiet_fraction < swing_fraction, "quiet_fraction",
+                fmt::format("< swing_fraction ({})", swing_fraction), quiet_fraction);
+  RequireNonNegative(noise_factor, "noise_factor");
+  RequireNonNegative(min_hold_s, "min_hold_s");
+}
+
+const char* ToString(ReleaseOutcome outcome) {
+  switch (outcome) {
+    case ReleaseOutcome::kDetected:
+      return "detected";
+    case ReleaseOutcome::kGiven:
+      return "given";
+    case ReleaseOutcome::kTooFewFrames:
+      return "too_few_frames";
+    case ReleaseOutcome::kNoMotion:
+      return "no_motion";
+    case ReleaseOutcome::kAlreadySwinging:
+      return "already_swinging";
+  }
+  return "?";
+}
+
 int FrameAtOrAfter(const Trajectories& t, double time_s) {
   const auto it = std::lower_bound(t.times_s.begin(), t.times_s.end(), time_s - 1e-9);
   return static_cast<int>(it - t.times_s.begin());
 }
 
 ReleaseDetection DetectRelease(const Trajectories& t, const ReleaseOptions& options) {
+  options.Validate();
   ReleaseDetection out;
   out.time_s = t.times_s.empty() ? 0.0 : t.times_s.front();
   if (t.frame_count() < 3 || t.tracks.empty()) {
+    out.outcome = ReleaseOutcome::kTooFewFrames;
     out.note = "too few frames to look for a release; the record is taken from its first frame";
     return out;
   }
@@ -147,6 +176,7 @@ ReleaseDetection DetectRelease(const Trajectories& t, const ReleaseOptions& opti
   const MarkerMotion& best = motions[order.front()];
   decide(order.front());
   if (best.peak_speed <= options.noise_factor * best.noise_speed) {
+    out.outcome = ReleaseOutcome::kNoMotion;
     out.note = fmt::format(
         "no marker moves above its noise (peak {:.3g} m/s, noise {:.3g} m/s); "
         "the record is taken from its first frame",
@@ -172,13 +202,14 @@ ReleaseDetection DetectRelease(const Trajectories& t, const ReleaseOptions& opti
     }
   }
   if (release.still < 0) {
+    out.outcome = ReleaseOutcome::kAlreadySwinging;
     out.note = fmt::format(
         "marker {} is already swinging in the first frames; the record is "
         "taken from its first frame",
         out.marker);
     return out;
   }
-  out.found = true;
+  out.outcome = ReleaseOutcome::kDetected;
   out.frame_index = release.still;
   out.time_s = t.times_s[release.still];
   out.note = fmt::format("marker {} is still until {:.3f} s, then swings (peak {:.3g} m/s){}",

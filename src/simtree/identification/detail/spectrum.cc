@@ -6,6 +6,7 @@
 #include <opencv2/core.hpp>
 
 #include "simtree/core/units.h"
+#include "simtree/identification/detail/option_checks.h"
 
 namespace simtree::identification {
 
@@ -21,14 +22,20 @@ const char* ToString(SpectralWindow window) {
   return "?";
 }
 
+void SpectrumOptions::Validate() const {
+  RequireNonNegative(exponential_rate, "exponential_rate");
+  RequireAtLeast(zero_pad_factor, 1, "zero_pad_factor");
+}
+
 AmplitudeSpectrum ComputeAmplitudeSpectrum(const std::vector<double>& samples, double dt,
                                            const SpectrumOptions& options) {
+  options.Validate();
   AmplitudeSpectrum out;
   const int n = static_cast<int>(samples.size());
   if (n < 2 || !(dt > 0)) return out;
   const double mean =
       options.remove_mean ? std::accumulate(samples.begin(), samples.end(), 0.0) / n : 0.0;
-  const int length = cv::getOptimalDFTSize(std::max(1, options.zero_pad_factor) * n);
+  const int length = cv::getOptimalDFTSize(options.zero_pad_factor * n);
   cv::Mat input = cv::Mat::zeros(1, length, CV_64F);
   auto* x = input.ptr<double>();
   for (int i = 0; i < n; ++i) {

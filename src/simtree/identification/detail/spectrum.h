@@ -16,11 +16,12 @@ const char* ToString(SpectralWindow window);
 
 struct SpectrumOptions {
   SpectralWindow window = SpectralWindow::kNone;
-  // Decay rate added by the exponential window (1/s).
-  double exponential_rate = 0.0;
-  // The FFT length is at least this many times the record (1: no padding).
-  int zero_pad_factor = 1;
-  bool remove_mean = true;
+  double exponential_rate = 0.0;  // decay rate the exponential window adds, 1/s
+  int zero_pad_factor = 1;        // FFT length over the record length (1: no padding)
+  bool remove_mean = true;        // subtract the record's mean before the FFT
+
+  // Throws InputError naming the field for a value out of range.
+  void Validate() const;
 };
 
 // Single-sided amplitude spectrum: bins 0 .. n/2 of an n-point FFT, bin k at k * bin_hz.

@@ -10,6 +10,7 @@
 
 #include "simtree/core/frames.h"
 #include "simtree/core/units.h"
+#include "simtree/identification/detail/option_checks.h"
 
 namespace simtree::identification {
 
@@ -19,12 +20,22 @@ double DampedSinusoid::operator()(double t) const {
   return amplitude * std::exp(-damping_ratio * omega * t) * std::cos(damped * t + phase_rad);
 }
 
+void DecayRecordOptions::Validate() const {
+  RequirePositive(fps, "fps");
+  RequirePositive(duration_s, "duration_s");
+  RequireNonNegative(noise_std, "noise_std");
+  RequireOption(std::isfinite(offset), "offset", "a finite number", offset);
+  RequireShare(gap_rate, "gap_rate");
+  RequireAtLeast(max_gap_samples, 1, "max_gap_samples");
+}
+
 SampledSignal MakeDecayRecord(const std::vector<std::vector<DampedSinusoid>>& channels,
                               const DecayRecordOptions& options) {
+  options.Validate();
   std::mt19937_64 rng(options.seed);
   std::normal_distribution<double> noise(0.0, 1.0);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  std::uniform_int_distribution<int> gap_length(1, std::max(1, options.max_gap_samples));
+  std::uniform_int_distribution<int> gap_length(1, options.max_gap_samples);
   const int n = static_cast<int>(std::lround(options.duration_s * options.fps));
   SampledSignal out;
   out.dt = 1.0 / options.fps;

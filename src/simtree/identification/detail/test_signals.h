@@ -25,14 +25,17 @@ struct DampedSinusoid {
 };
 
 struct DecayRecordOptions {
-  double fps = 30.0;
-  double duration_s = 10.0;
-  double noise_std = 0.0;  // white Gaussian, signal units
-  double offset = 0.0;     // constant added to every channel
+  double fps = 30.0;         // samples per second
+  double duration_s = 10.0;  // s
+  double noise_std = 0.0;    // white Gaussian, signal units
+  double offset = 0.0;       // constant added to every channel, signal units
   // Gaps: at each valid sample a gap starts with this probability and lasts 1..max_gap_samples.
   double gap_rate = 0.0;
   int max_gap_samples = 5;
-  uint64_t seed = 1;
+  uint64_t seed = 1;  // of the noise and the gaps
+
+  // Throws InputError naming the field for a value out of range.
+  void Validate() const;
 };
 
 // One channel per entry of `channels`, each the sum of its modes, sampled from t = 0.

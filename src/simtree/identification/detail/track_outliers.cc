@@ -10,6 +10,7 @@
 #include <Eigen/Cholesky>
 
 #include "simtree/core/statistics.h"
+#include "simtree/identification/detail/option_checks.h"
 
 namespace simtree::identification {
 namespace {
@@ -22,9 +23,9 @@ using Basis = Eigen::Matrix<double, kCoefficients, 1>;
 // `max_trimmed` samples whose removal fits the rest best (every choice tried: a window has at most
 // 2 half_window + 1 samples). A jump of a frame or two therefore falls out of its own and its
 // neighbours' fits, and only the jumped samples lie far from the curve. A cubic over +-4 frames
-// follows a 2 Hz swing to well under a millimetre, where the median of the neighbours (the
-// earlier test) sat up to 6 cm inside each turning point. Returns a negative value when too few
-// samples lie around i, or none on one side, to judge it.
+// follows a 2 Hz swing to well under a millimetre, where a median of the neighbours would sit
+// centimetres inside each turning point. Returns a negative value when too few samples lie
+// around i, or none on one side, to judge it.
 double DeviationFromLocalCubic(const MarkerTrack& track, int i,
                                const TrackOutlierOptions& options) {
   const int n = static_cast<int>(track.positions.size());
@@ -91,8 +92,16 @@ double DeviationFromLocalCubic(const MarkerTrack& track, int i,
 
 }  // namespace
 
+void TrackOutlierOptions::Validate() const {
+  RequireAtLeast(half_window, 3, "half_window");
+  RequireOption(max_trimmed >= 0 && max_trimmed <= 2, "max_trimmed", "0, 1 or 2", max_trimmed);
+  RequirePositive(threshold, "threshold");
+  RequireNonNegative(min_deviation_m, "min_deviation_m");
+}
+
 TrackOutlierReport RemoveTrackOutliers(Trajectories& trajectories,
                                        const TrackOutlierOptions& options) {
+  options.Validate();
   TrackOutlierReport report;
   std::set<int> markers;
   const int n = trajectories.frame_count();

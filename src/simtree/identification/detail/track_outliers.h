@@ -13,17 +13,19 @@ namespace simtree::identification {
 
 struct TrackOutlierOptions {
   // A sample is compared with a cubic in time fitted by least trimmed squares to the valid
-  // samples within this many frames on either side (itself included), the `max_trimmed` that fit
-  // worst left out. The cubic follows a swing's turning points, where the median of the
-  // neighbours (the earlier test) lay up to 6 cm off and took 89-424 samples from error-free tracks
-  // of fast swings; trimming keeps a jump of one or two frames out of its neighbours' fits.
-  int half_window = 4;
-  int max_trimmed = 2;
+  // samples within `half_window` frames on either side (itself included), the `max_trimmed` (0, 1
+  // or 2) that fit worst left out. The cubic follows a swing through its turning points, and
+  // trimming keeps a jump of one or two frames out of its neighbours' fits.
+  int half_window = 4;  // frames, >= 3 (a cubic and a residual need 6 samples)
+  int max_trimmed = 2;  // samples
   // It is an outlier when it is farther from that curve than `threshold` times the track's
   // robust deviation scale, and farther than `min_deviation_m` (so a perfectly clean track does
   // not lose samples to rounding).
-  double threshold = 6.0;
-  double min_deviation_m = 0.005;
+  double threshold = 6.0;          // robust deviations
+  double min_deviation_m = 0.005;  // m
+
+  // Throws InputError naming the field for a value out of range.
+  void Validate() const;
 };
 
 struct TrackOutlierReport {

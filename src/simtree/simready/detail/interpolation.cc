@@ -9,6 +9,7 @@
 
 #include "simtree/core/error.h"
 #include "simtree/core/statistics.h"
+#include "simtree/identification/detail/option_checks.h"
 
 namespace simtree::simready {
 namespace {
@@ -159,45 +160,42 @@ std::string InterpolationModel::Describe() const {
                      100 * (std::exp(leave_one_out_log_error) - 1), measured);
 }
 
-InterpolationModel FitInterpolationModel(const Tree& tree, const std::vector<BranchSample>& samples,
-                                         const InterpolationOptions& options) {
-  if (samples.empty()) {
-    throw InputError("materials", "", "no measured branch to interpolate from");
-  }
-  InterpolationModel model;
-  model.clamp = options.clamp_to_measured;
-  model.measured = static_cast<int>(samples.size());
-  std::vector<double> log_f, damping;
-  std::vector<std::vector<double>> by_level(tree.MaxLevel() + 1);
-  std::vector<std::pair<double, double>> geometry;
-  model.min_frequency_hz = std::numeric_limits<double>::infinity();
-  model.max_frequency_hz = 0;
-  for (const BranchSample& s : samples) {
-    if (s.branch < 0 || s.branch >= tree.size()) {
-      throw InputError("materials", fmt::format("branch {}", s.branch),
-                       fmt::format("not in the tree (it has {} branches)", tree.size()));
-    }
-    const Branch& b = tree.branches[s.branch];
-    geometry.emplace_back(b.base().radius, b.Length());
-    log_f.push_back(std::log(s.frequency_hz));
-    damping.push_back(s.damping_ratio);
-    by_level[b.level].push_back(s.damping_ratio);
-    model.min_frequency_hz = std::min(model.min_frequency_hz, s.frequency_hz);
-    model.max_frequency_hz = std::max(model.max_frequency_hz, s.frequency_hz);
-  }
-  model.median_damping = Median(damping);
-  for (const auto& level : by_level) model.level_damping.push_back(Median(level));
+void InterpolationOptions::Validate() const {
+  identification::RequireAtLeast(min_branches_cantilever, 3, "min_branches_cantilever");
+  identification::RequireAtLeast(min_branches_two_slopes, 4, "min_branches_two_slopes");
+}
 
-  // Each branch's measured log frequency (the mean when several samples name it): what the
-  // ancestor model reads; `log_f_sum` and `count` let leave-one-out take one sample out.
-  const int n = static_cast<int>(samples.size());
-  std::vector<double> log_f_sum(tree.size(), 0.0);
-  std::vector<int> count(tree.size(), 0);
-  for (int i = 0; i < n; ++i) {
-    log_f_sum[samples[i].branch] += log_f[i];
-    ++count[samples[i].branch];
+namespace {
+
+// What the models are fitted on: per sample its branch's log frequency and geometry, and each
+// branch's measured log frequency (the mean when several samples name it), with one sample left
+// out on request for leave-one-out.
+struct Measurements {
+  const Tree& tree;
+  const std::vector<BranchSample>& samples;
+  std::vector<double> log_f;
+  std::vector<std::pair<double, double>> geometry;  // base radius, length
+  std::vector<double> log_f_sum;                    // per branch
+  std::vector<int> count;                           // per branch
+
+  Measurements(const Tree& t, const std::vector<BranchSample>& s) : tree(t), samples(s) {
+    log_f_sum.assign(tree.size(), 0.0);
+    count.assign(tree.size(), 0);
+    for (const BranchSample& sample : samples) {
+      const Branch& b = tree.branches[sample.branch];
+      geometry.emplace_back(b.base().radius, b.Length());
+      log_f.push_back(std::log(sample.frequency_hz));
+    }
+    for (size_t i = 0; i < samples.size(); ++i) {
+      log_f_sum[samples[i].branch] += log_f[i];
+      ++count[samples[i].branch];
+    }
   }
-  auto branch_log_f = [&](int leave) {
+  int size() const { return static_cast<int>(samples.size()); }
+
+  // Each branch's log frequency (NaN where none is measured) with sample `leave` left out (-1:
+  // none).
+  std::vector<double> BranchLogFrequency(int leave) const {
     std::vector<double> out(tree.size(), kNaN);
     for (int b = 0; b < tree.size(); ++b) {
       const bool left = leave >= 0 && samples[leave].branch == b;
@@ -205,59 +203,109 @@ InterpolationModel FitInterpolationModel(const Tree& tree, const std::vector<Bra
       if (c > 0) out[b] = (log_f_sum[b] - (left ? log_f[leave] : 0.0)) / c;
     }
     return out;
-  };
-  model.measured_frequency_hz = branch_log_f(-1);
-  for (double& f : model.measured_frequency_hz) f = std::exp(f);  // NaN stays NaN
+  }
 
-  // Candidate models the data can carry; the one with the smallest leave-one-out error wins.
-  std::vector<FrequencyModelKind> kinds = {FrequencyModelKind::kMedian,
-                                           FrequencyModelKind::kNearestMeasuredAncestor};
-  auto features = [&](FrequencyModelKind kind) {
+  std::vector<Eigen::VectorXd> Predictors(FrequencyModelKind kind) const {
     std::vector<Eigen::VectorXd> x;
     for (const auto& [r, l] : geometry) x.push_back(Features(kind, r, l));
     return x;
-  };
+  }
+};
+
+// The measured range, the damping per level, and each branch's measured frequency.
+InterpolationModel MeasuredValues(const Measurements& data, const InterpolationOptions& options) {
+  InterpolationModel model;
+  model.clamp = options.clamp_to_measured;
+  model.measured = data.size();
+  std::vector<double> damping;
+  std::vector<std::vector<double>> by_level(data.tree.MaxLevel() + 1);
+  model.min_frequency_hz = std::numeric_limits<double>::infinity();
+  model.max_frequency_hz = 0;
+  for (const BranchSample& s : data.samples) {
+    damping.push_back(s.damping_ratio);
+    by_level[data.tree.branches[s.branch].level].push_back(s.damping_ratio);
+    model.min_frequency_hz = std::min(model.min_frequency_hz, s.frequency_hz);
+    model.max_frequency_hz = std::max(model.max_frequency_hz, s.frequency_hz);
+  }
+  model.median_damping = Median(damping);
+  for (const auto& level : by_level) model.level_damping.push_back(Median(level));
+  model.measured_frequency_hz = data.BranchLogFrequency(-1);
+  for (double& f : model.measured_frequency_hz) f = std::exp(f);  // NaN stays NaN
+  return model;
+}
+
+// The models the data can carry, simplest first: slopes need enough branches that vary in size.
+std::vector<FrequencyModelKind> CandidateModels(const Measurements& data,
+                                                const InterpolationOptions& options) {
+  std::vector<FrequencyModelKind> kinds = {FrequencyModelKind::kMedian,
+                                           FrequencyModelKind::kNearestMeasuredAncestor};
+  const int n = data.size();
   if (n >= options.min_branches_cantilever &&
-      Varies(features(FrequencyModelKind::kCantilever), 1)) {
+      Varies(data.Predictors(FrequencyModelKind::kCantilever), 1)) {
     kinds.push_back(FrequencyModelKind::kCantilever);
   }
   if (n >= options.min_branches_two_slopes &&
-      Varies(features(FrequencyModelKind::kLengthAndRadius), 1) &&
-      Varies(features(FrequencyModelKind::kLengthAndRadius), 2)) {
+      Varies(data.Predictors(FrequencyModelKind::kLengthAndRadius), 1) &&
+      Varies(data.Predictors(FrequencyModelKind::kLengthAndRadius), 2)) {
     kinds.push_back(FrequencyModelKind::kLengthAndRadius);
   }
-  double best_error = std::numeric_limits<double>::infinity();
-  for (FrequencyModelKind kind : kinds) {
-    const std::vector<Eigen::VectorXd> x = features(kind);
-    double error = kNaN;
-    if (n >= 2) {
-      double sum = 0;
-      for (int leave = 0; leave < n; ++leave) {
-        std::vector<Eigen::VectorXd> xs;
-        std::vector<double> ys;
-        for (int i = 0; i < n; ++i) {
-          if (i == leave) continue;
-          xs.push_back(x[i]);
-          ys.push_back(log_f[i]);
-        }
-        double predicted = Predict(Fit(kind, xs, ys), x[leave]);
-        if (kind == FrequencyModelKind::kNearestMeasuredAncestor) {
-          predicted =
-              AncestorLogFrequency(tree, branch_log_f(leave), samples[leave].branch, predicted);
-        }
-        if (options.clamp_to_measured) {
-          predicted = std::clamp(predicted, std::log(model.min_frequency_hz),
-                                 std::log(model.max_frequency_hz));
-        }
-        sum += std::abs(predicted - log_f[leave]);
-      }
-      error = sum / n;
+  return kinds;
+}
+
+// Mean absolute leave-one-out error of log f for model `kind` (NaN with fewer than 2 samples).
+double LeaveOneOutError(FrequencyModelKind kind, const Measurements& data,
+                        const InterpolationModel& model) {
+  const int n = data.size();
+  if (n < 2) return kNaN;
+  const std::vector<Eigen::VectorXd> x = data.Predictors(kind);
+  double sum = 0;
+  for (int leave = 0; leave < n; ++leave) {
+    std::vector<Eigen::VectorXd> xs;
+    std::vector<double> ys;
+    for (int i = 0; i < n; ++i) {
+      if (i == leave) continue;
+      xs.push_back(x[i]);
+      ys.push_back(data.log_f[i]);
     }
-    // Ties (and n < 2) keep the simpler model: the earlier in `kinds`.
+    double predicted = Predict(Fit(kind, xs, ys), x[leave]);
+    if (kind == FrequencyModelKind::kNearestMeasuredAncestor) {
+      predicted = AncestorLogFrequency(data.tree, data.BranchLogFrequency(leave),
+                                       data.samples[leave].branch, predicted);
+    }
+    if (model.clamp) {
+      predicted =
+          std::clamp(predicted, std::log(model.min_frequency_hz), std::log(model.max_frequency_hz));
+    }
+    sum += std::abs(predicted - data.log_f[leave]);
+  }
+  return sum / n;
+}
+
+}  // namespace
+
+InterpolationModel FitInterpolationModel(const Tree& tree, const std::vector<BranchSample>& samples,
+                                         const InterpolationOptions& options) {
+  options.Validate();
+  if (samples.empty()) {
+    throw InputError("materials", "", "no measured branch to interpolate from");
+  }
+  for (const BranchSample& s : samples) {
+    if (s.branch < 0 || s.branch >= tree.size()) {
+      throw InputError("materials", fmt::format("branch {}", s.branch),
+                       fmt::format("not in the tree (it has {} branches)", tree.size()));
+    }
+  }
+  const Measurements data(tree, samples);
+  InterpolationModel model = MeasuredValues(data, options);
+  // The candidate with the smallest leave-one-out error wins; ties (and n < 2) keep the simpler
+  // model, the earlier in the list.
+  double best_error = std::numeric_limits<double>::infinity();
+  for (FrequencyModelKind kind : CandidateModels(data, options)) {
+    const double error = LeaveOneOutError(kind, data, model);
     if (kind == FrequencyModelKind::kMedian || error < best_error - 1e-12) {
       best_error = std::isnan(error) ? std::numeric_limits<double>::infinity() : error;
       model.kind = kind;
-      model.coefficients = Fit(kind, x, log_f);
+      model.coefficients = Fit(kind, data.Predictors(kind), data.log_f);
       model.leave_one_out_log_error = error;
     }
   }

@@ -11,7 +11,7 @@
 // ancestor; the median where it hangs from none), because a pull test's modes live in subtrees:
 // on synthetic pull tests the unmarked branches' true frequencies fall into a few whole-tree
 // modes, by the first- or second-level branch they hang from, not by their size
-// (docs/identification.md, "Interpolation"). Leave-one-out error picks among the four, so a tree
+// (docs/simready.md, "Interpolation"). Leave-one-out error picks among the four, so a tree
 // whose branches all swing near one frequency (a whole-tree mode dominates; real trees often do)
 // is not forced onto the cantilever law; ties keep the earlier (simpler) model, in the order
 // median, ancestor, cantilever, two slopes. Predictions are clamped to the measured range (paper:
@@ -41,10 +41,14 @@ struct BranchSample {
 };
 
 struct InterpolationOptions {
-  // Fewest measured branches for the one-slope cantilever fit, and for the two-slope fit.
+  // Fewest measured branches for the one-slope cantilever fit (>= 3: a line fitted with one
+  // branch left out), and for the two-slope fit (>= 4).
   int min_branches_cantilever = 3;
   int min_branches_two_slopes = 6;
-  bool clamp_to_measured = true;
+  bool clamp_to_measured = true;  // predictions clamped to the measured frequency range
+
+  // Throws InputError naming the field for a value out of range.
+  void Validate() const;
 };
 
 struct InterpolationModel {
@@ -55,7 +59,7 @@ struct InterpolationModel {
   // Mean absolute leave-one-out error of log f over the measured branches (NaN with < 2). The
   // mean absolute error, not the RMS: a pull test leaves a few branches at a local mode far from
   // the rest, and squared errors let those few pick a size law whose prediction lies between the
-  // modes, right for no branch (measured on synth: docs/identification.md, "Interpolation").
+  // modes, right for no branch (docs/simready.md, "Interpolation").
   double leave_one_out_log_error = 0.0;
   std::vector<double> level_damping;  // per level, NaN where no branch of that level is measured
   double median_damping = 0.0;
