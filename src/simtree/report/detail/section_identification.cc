@@ -17,7 +17,7 @@ namespace id = simtree::identification;
 
 void AddRecord(const id::MaterialsFile& m, Section& s) {
   HtmlTable table({"", ""}, "facts");
-  table.AddRow({"estimator", m.estimator});
+  table.AddRow({"estimator", ToString(m.estimator)});
   table.AddRow({"release", fmt::format("{} s ({})", FormatNumber(m.release_time_s, 3),
                                        m.release_detected ? "detected" : "given")});
   table.AddRow({"free decay used", fmt::format("{} - {} s", FormatNumber(m.window_start_s, 3),
