@@ -77,7 +77,14 @@ function(simtree_add_odr_check target)
   set(main ${CMAKE_CURRENT_BINARY_DIR}/${target}_main.cc)
   file(WRITE ${main} "int main() { return 0; }\n")
   add_executable(${target} ${main})
-  target_link_libraries(${target} PRIVATE "$<LINK_LIBRARY:WHOLE_ARCHIVE,${ARG_LIBRARIES}>")
+  # Every object of every library, whole (the libraries also stay ordinary dependencies, for what
+  # they link to; their objects are in already, so nothing is pulled twice).
+  set(whole)
+  foreach(library IN LISTS ARG_LIBRARIES)
+    list(APPEND whole "$<TARGET_FILE:${library}>")
+  endforeach()
+  target_link_libraries(${target} PRIVATE -Wl,--whole-archive ${whole} -Wl,--no-whole-archive
+                        ${ARG_LIBRARIES})
   # -O0 at the link: the check needs the type merging of the whole program, not its optimisation.
   target_link_options(${target} PRIVATE -flto=auto -O0 -Wodr -Werror=odr)
 endfunction()

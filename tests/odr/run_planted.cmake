@@ -14,7 +14,7 @@ if(NOT configure_result EQUAL 0)
 endif()
 execute_process(COMMAND ${CMAKE_COMMAND} --build ${BINARY_DIR}
   RESULT_VARIABLE build_result OUTPUT_VARIABLE out ERROR_VARIABLE out)
-string(FIND "${out}" "-Wodr" odr_at)
+string(FIND "${out}" "One Definition Rule" odr_at)
 if(plant)
   if(build_result EQUAL 0 OR odr_at EQUAL -1)
     message(FATAL_ERROR "the planted clash was not caught (exit ${build_result}):\n${out}")
