@@ -72,6 +72,9 @@ struct BranchLink {
   Eigen::Vector3d rot_u = Eigen::Vector3d::Zero(), rot_w = Eigen::Vector3d::Zero();
   std::array<double, 3> inverse_mass = {1, 1, 1};
   std::array<OscillatorStep, 3> step;  // for the step length of the last Step()
+  // The share of the swing bank (BranchState) kept over a step: the slowest of the three modes'
+  // free energy decay over it, e^(-2 zeta w dt).
+  double bank_keep = 1;
 };
 
 // The rest of a branch's constants.
