@@ -244,15 +244,15 @@ struct TreeDynamics::Impl {
     const TreeOrder& order = model.order;
     for (int i = order.level_begin[0]; i < order.level_begin[1]; ++i) {
       const int root = order.level_order[i];
-      AdvanceRoot(model.links[root], model.models[root].mechanics,
+      AdvanceRoot(model.links[root],
                   loaded_step ? loads.load[root].q : std::array<double, 3>{0, 0, 0}, dt,
                   state[root]);
     }
     scheduler.TopDown(model.order, [&](int id) {
       PoseBranch(model.links[id], model.models[id], ParentState(id), state[id]);
       DeformNodes(model.nodes, model.links[id], state[id], positions.data());
-      AdvanceChildren(id, Children(id), model.links, model.models, step_loads, dt,
-                      options.base_excitation, state);
+      AdvanceChildren(id, Children(id), model.links, step_loads, dt, options.base_excitation,
+                      state);
     });
     time += dt;
     ++steps;

@@ -13,17 +13,33 @@ namespace {
 
 constexpr std::array<double, 3> kNoForce = {0, 0, 0};
 
+// The energy of a state about `rest` (J).
+double EnergyAbout(const BranchLink& k, const ModalState& s, const std::array<double, 3>& rest) {
+  double e = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double q = s.q[i] - rest[i];
+    e += k.half_mass[i] * s.v[i] * s.v[i] + k.half_stiffness[i] * q * q;
+  }
+  return e;
+}
+
+// The equilibrium of a branch under generalised forces `force`: q = F / (m w^2).
+std::array<double, 3> Equilibrium(const BranchLink& k, const std::array<double, 3>& force) {
+  return {0.5 * force[0] / k.half_stiffness[0], 0.5 * force[1] / k.half_stiffness[1],
+          0.5 * force[2] / k.half_stiffness[2]};
+}
+
 // What damping takes out of a branch's motion over a step (J, >= 0 with the exact integrator):
-// the energy of its state `s` about its equilibrium under the step's generalised forces `force`,
-// less that of the same state after the step without a drive.
-double DampingLoss(const BranchLink& k, const BranchMechanics& m, const ModalState& s,
-                   const std::array<double, 3>& force) {
-  const std::array<double, 3> rest = StaticDeflection(m, force);
-  ModalState from = s;
-  for (int i = 0; i < 3; ++i) from.q[i] -= rest[i];
-  ModalState to = from;
-  for (int i = 0; i < 3; ++i) k.step[i].Apply(0.0, to.q[i], to.v[i]);
-  return std::max(0.0, ModalEnergy(m, from) - ModalEnergy(m, to));
+// the energy of its state `s` about its equilibrium `rest` under the step's load, less that of
+// the same state after the step without a drive.
+double DampingLoss(const BranchLink& k, const ModalState& s, const std::array<double, 3>& rest) {
+  ModalState after = s;
+  for (int i = 0; i < 3; ++i) {
+    after.q[i] -= rest[i];
+    k.step[i].Apply(0.0, after.q[i], after.v[i]);
+    after.q[i] += rest[i];
+  }
+  return std::max(0.0, EnergyAbout(k, s, rest) - EnergyAbout(k, after, rest));
 }
 
 // The primary motion over the step, and its acceleration (what drives the children's swings).
@@ -59,9 +75,10 @@ std::array<double, 3> BaseExcitation(const BranchLink& k, const BranchState& ps,
           -k.twist_rotation * alpha.y()};
 }
 
-// A child's swing over the step without the drive and with it.
+// A child's swing over the step without the drive, and what the drive adds to it.
 struct SwingStep {
-  ModalState free, driven;
+  ModalState free;
+  std::array<double, 3> dq = {0, 0, 0}, dv = {0, 0, 0};
 };
 
 // The largest share lambda in [0, 1] of the drive whose work lambda lin + lambda^2 quad
@@ -107,9 +124,10 @@ double ModalEnergy(const BranchMechanics& m, const ModalState& s) {
   return e;
 }
 
-void AdvanceRoot(const BranchLink& k, const BranchMechanics& m, const std::array<double, 3>& force,
-                 double dt, BranchState& st) {
-  st.swing_budget = DampingLoss(k, m, st.modal, force) + st.swing_bank;
+void AdvanceRoot(const BranchLink& k, const std::array<double, 3>& force, double dt,
+                 BranchState& st) {
+  if (k.has_children)
+    st.swing_budget = DampingLoss(k, st.modal, Equilibrium(k, force)) + st.swing_bank;
   AdvancePrimary(k, force, dt, st);
   for (int i = 0; i < 3; ++i) {
     st.modal.q[i] = st.primary.q[i] + st.swing.q[i];
@@ -118,8 +136,8 @@ void AdvanceRoot(const BranchLink& k, const BranchMechanics& m, const std::array
 }
 
 void AdvanceChildren(int parent, std::span<const int> children, std::span<const BranchLink> links,
-                     std::span<const BranchModel> models, std::span<const Load> loads, double dt,
-                     bool base_excitation, std::span<BranchState> states) {
+                     std::span<const Load> loads, double dt, bool base_excitation,
+                     std::span<BranchState> states) {
   BranchState& ps = states[parent];
   thread_local std::vector<SwingStep> swings;
   swings.assign(children.size(), SwingStep{});
@@ -130,28 +148,24 @@ void AdvanceChildren(int parent, std::span<const int> children, std::span<const 
   for (size_t j = 0; j < children.size(); ++j) {
     const int c = children[j];
     const BranchLink& k = links[c];
-    const BranchMechanics& m = models[c].mechanics;
     BranchState& st = states[c];
     const std::array<double, 3>& force = loads.empty() ? kNoForce : loads[c].q;
-    st.swing_budget = DampingLoss(k, m, st.modal, force) + st.swing_bank;
+    const std::array<double, 3> rest = loads.empty() ? kNoForce : Equilibrium(k, force);
+    if (k.has_children) st.swing_budget = DampingLoss(k, st.modal, rest) + st.swing_bank;
     AdvancePrimary(k, force, dt, st);
-    const std::array<double, 3> rest = StaticDeflection(m, force);
     SwingStep& s = swings[j];
-    s.free = s.driven = st.swing;
+    s.free = st.swing;
     for (int i = 0; i < 3; ++i) k.step[i].Apply(0.0, s.free.q[i], s.free.v[i]);
-    if (!base_excitation) {
-      s.driven = s.free;
-      continue;
-    }
+    if (!base_excitation) continue;
     const std::array<double, 3> g = BaseExcitation(k, ps, st);
     for (int i = 0; i < 3; ++i) {
-      k.step[i].Apply(g[i] * k.inverse_mass[i], s.driven.q[i], s.driven.v[i]);
-      const double dq = s.driven.q[i] - s.free.q[i], dv = s.driven.v[i] - s.free.v[i];
-      const double w2 = kTwoPi * m.frequency[i] * kTwoPi * m.frequency[i];
-      const double total_q = st.primary.q[i] + s.free.q[i] - rest[i];
-      const double total_v = st.primary.v[i] + s.free.v[i];
-      lin += m.modal_mass[i] * (total_v * dv + w2 * total_q * dq);
-      quad += 0.5 * m.modal_mass[i] * (dv * dv + w2 * dq * dq);
+      const double accel = g[i] * k.inverse_mass[i];
+      s.dq[i] = k.step[i].b1 * accel;
+      s.dv[i] = k.step[i].b2 * accel;
+      const double q = st.primary.q[i] + s.free.q[i] - rest[i];
+      const double v = st.primary.v[i] + s.free.v[i];
+      lin += 2.0 * (k.half_mass[i] * v * s.dv[i] + k.half_stiffness[i] * q * s.dq[i]);
+      quad += k.half_mass[i] * s.dv[i] * s.dv[i] + k.half_stiffness[i] * s.dq[i] * s.dq[i];
     }
   }
   const double share = AffordableShare(lin, quad, ps.swing_budget);
@@ -159,13 +173,9 @@ void AdvanceChildren(int parent, std::span<const int> children, std::span<const 
     BranchState& st = states[children[j]];
     const SwingStep& s = swings[j];
     for (int i = 0; i < 3; ++i) {
-      if (share < 1.0) {
-        st.swing.q[i] = s.free.q[i] + share * (s.driven.q[i] - s.free.q[i]);
-        st.swing.v[i] = s.free.v[i] + share * (s.driven.v[i] - s.free.v[i]);
-      } else {
-        st.swing.q[i] = s.driven.q[i];
-        st.swing.v[i] = s.driven.v[i];
-      }
+      // At a full share, the same operations in the same order as one driven step.
+      st.swing.q[i] = s.free.q[i] + (share < 1.0 ? share * s.dq[i] : s.dq[i]);
+      st.swing.v[i] = s.free.v[i] + (share < 1.0 ? share * s.dv[i] : s.dv[i]);
       st.modal.q[i] = st.primary.q[i] + st.swing.q[i];
       st.modal.v[i] = st.primary.v[i] + st.swing.v[i];
     }

@@ -27,8 +27,8 @@ double ModalEnergy(const BranchMechanics& mechanics, const ModalState& state);
 
 // Advances a branch with no parent (a trunk) by dt under the generalised forces `force` (N, N,
 // N m) on its modes, first setting its swing budget for its children (BranchState).
-void AdvanceRoot(const BranchLink& link, const BranchMechanics& mechanics,
-                 const std::array<double, 3>& force, double dt, BranchState& state);
+void AdvanceRoot(const BranchLink& link, const std::array<double, 3>& force, double dt,
+                 BranchState& state);
 
 // Advances the children of branch `parent`, which has been advanced and posed for this step (the
 // children's poses are still the last step's): each child's primary motion under its
@@ -57,7 +57,7 @@ void AdvanceRoot(const BranchLink& link, const BranchMechanics& mechanics,
 // the free one-way drive; a heavy child tuned to its parent no longer rings up on energy that
 // does not exist.
 void AdvanceChildren(int parent, std::span<const int> children, std::span<const BranchLink> links,
-                     std::span<const BranchModel> models, std::span<const Load> loads, double dt,
-                     bool base_excitation, std::span<BranchState> states);
+                     std::span<const Load> loads, double dt, bool base_excitation,
+                     std::span<BranchState> states);
 
 }  // namespace simtree::dynamics
