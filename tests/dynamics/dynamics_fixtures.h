@@ -1,6 +1,7 @@
 #pragma once
 // Hand-made trees for the dynamics tests, with closed-form answers in mind.
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -85,6 +86,30 @@ inline Tree CurvedBranchTree() {
   ComputeFrames(tree);
   tree.branches[0].material =
       Material::FromFrequencyDampingStiffness(1.5, 0.03, 2000, MaterialSource::kMeasured);
+  return tree;
+}
+
+// A vertical parent (2 m, 21 nodes) with `twigs` straight twigs (0.4 m) hung from its upper
+// half all round it, every twig at the parent's frequency and damping (what a pull test's
+// materials give: a twig takes the frequency of the tree's mode it moves in) and of stiffness
+// `twig_stiffness` (N/m: a light twig's wood times 4 pi^2 f^2 is a few N/m).
+inline Tree TunedTwigTree(int twigs, double twig_stiffness, double frequency_hz = 1.5,
+                          double damping = 0.03, double parent_stiffness = 1000) {
+  Tree tree;
+  tree.branches.push_back(StraightBranch(0, -1, 0, {0, 0, 0}, {0, 0, 1}, 2.0, 21, 0.05));
+  for (int i = 1; i <= twigs; ++i) {
+    const int node = 10 + (i % 11);
+    const double a = 2.4 * i;
+    tree.branches.push_back(StraightBranch(i, 0, node, tree.branches[0].nodes[node].position,
+                                           {std::cos(a), std::sin(a), 0.3}, 0.4, 9, 0.006));
+  }
+  AssignLevels(tree);
+  ComputeFrames(tree);
+  for (Branch& b : tree.branches) {
+    b.material = Material::FromFrequencyDampingStiffness(
+        frequency_hz, damping, b.id == 0 ? parent_stiffness : twig_stiffness,
+        MaterialSource::kInterpolated);
+  }
   return tree;
 }
 

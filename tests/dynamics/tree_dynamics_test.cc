@@ -148,8 +148,12 @@ TEST(TreeDynamics, LoadsSuperpose) {
   }
   EXPECT_GT(largest, 1e-3);
   EXPECT_LT(worst, 2e-3 * largest);
-  // Dynamically: pull from rest for 2 s, release one, 3 s more.
-  TreeDynamics da(tree), db(tree), dab(tree);
+  // Dynamically: pull from rest for 2 s, release one, 3 s more. Without the swings: a family's
+  // swings take no more energy than their parent's damping gives them (modal_step.h), which is
+  // not linear once it binds, as it does for these heavy children pulled from rest.
+  DynamicsOptions linear;
+  linear.base_excitation = false;
+  TreeDynamics da(tree, linear), db(tree, linear), dab(tree, linear);
   const int ra = da.AttachRope(a);
   db.AttachRope(b);
   const int rab = dab.AttachRope(a);
@@ -171,11 +175,12 @@ TEST(TreeDynamics, LoadsSuperpose) {
       }
     }
   }
-  // Linear up to the small change of geometry one load makes for the other.
+  // Linear up to the small change of geometry one load makes for the other (and rounding: a
+  // straight branch pulled across its axis does not twist).
   for (int br = 0; br < tree.size(); ++br) {
     for (int m = 0; m < 3; ++m) {
       EXPECT_GT(amplitude[br][m], 0.0);
-      EXPECT_LT(error[br][m], 5e-3 * amplitude[br][m]) << "branch " << br << " mode " << m;
+      EXPECT_LT(error[br][m], 5e-3 * amplitude[br][m] + 1e-12) << "branch " << br << " mode " << m;
     }
   }
 }
@@ -272,31 +277,37 @@ TEST(TreeDynamics, EnergyNeverGrowsWithoutInput) {
   const Tree tree = test::ThreeLevelTree();
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
-  for (double dt : {1.0 / 120, 1.0 / 30, 0.5}) {
-    DynamicsOptions options;
-    options.base_excitation = false;
-    TreeDynamics sim(tree, options);
-    for (int b = 0; b < tree.size(); ++b) {
-      ModalState s;
-      for (int m = 0; m < 3; ++m) {
-        s.q[m] = 0.05 * uniform(rng);
-        s.v[m] = 0.5 * uniform(rng);
+  for (bool base_excitation : {false, true}) {
+    for (double dt : {1.0 / 120, 1.0 / 30, 0.5}) {
+      DynamicsOptions options;
+      options.base_excitation = base_excitation;
+      TreeDynamics sim(tree, options);
+      for (int b = 0; b < tree.size(); ++b) {
+        ModalState s;
+        for (int m = 0; m < 3; ++m) {
+          s.q[m] = 0.05 * uniform(rng);
+          s.v[m] = 0.5 * uniform(rng);
+        }
+        sim.SetModalState(b, s);
       }
-      sim.SetModalState(b, s);
+      double energy = sim.Energy();
+      const double start = energy;
+      for (int i = 0; i < 2000; ++i) {
+        sim.Step(dt);
+        const double next = sim.Energy();
+        if (base_excitation) {
+          // The swings spend what their parents' damping took out earlier: the total can rise
+          // again, but never above what the tree started with.
+          ASSERT_LE(next, start * (1 + 1e-12)) << "dt " << dt << " step " << i;
+        } else {
+          ASSERT_LE(next, energy * (1 + 1e-12)) << "dt " << dt << " step " << i;
+        }
+        energy = next;
+      }
+      EXPECT_LT(energy, 1e-3 * start);
     }
-    double energy = sim.Energy();
-    const double start = energy;
-    for (int i = 0; i < 2000; ++i) {
-      sim.Step(dt);
-      const double next = sim.Energy();
-      ASSERT_LE(next, energy * (1 + 1e-12)) << "dt " << dt << " step " << i;
-      energy = next;
-    }
-    EXPECT_LT(energy, 1e-3 * start);
   }
-  // With base excitation a child draws on its parent's motion (one-way coupling), so the tree's
-  // total can rise for a while; the trunk, which nothing drives, still only loses energy, and
-  // everything dies out.
+  // The trunk, which nothing drives, only loses energy, and everything dies out.
   TreeDynamics sim(tree);
   ModalState s;
   s.q = {0.02, -0.01, 0.003};
@@ -306,8 +317,8 @@ TEST(TreeDynamics, EnergyNeverGrowsWithoutInput) {
   for (int i = 0; i < 60 * 120; ++i) {
     sim.Step(1.0 / 60);
     ASSERT_LE(sim.BranchEnergy(0), trunk * (1 + 1e-12));
+    ASSERT_LE(sim.Energy(), start * (1 + 1e-12));
     trunk = sim.BranchEnergy(0);
-    ASSERT_TRUE(std::isfinite(sim.Energy()));
   }
   EXPECT_LT(sim.Energy(), 1e-6 * start);
 }

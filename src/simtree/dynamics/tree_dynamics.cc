@@ -75,8 +75,6 @@ const DynamicsOptions& Validated(const DynamicsOptions& options) {
   return options;
 }
 
-constexpr std::array<double, 3> kNoForce = {0, 0, 0};
-
 }  // namespace
 
 void DynamicsOptions::Validate() const {
@@ -158,7 +156,20 @@ struct TreeDynamics::Impl {
     SetBranchMechanics(ComputeBranchMechanics(model.tree.branches[id], m, k, model.nodes,
                                               options.twist_stiffness_ratio),
                        m, k);
-    if (step_dt > 0.0) k.step = MakeBranchSteps(m.mechanics, step_dt, options.integrator);
+    if (step_dt > 0.0) SetSteps(id);
+  }
+
+  // The branch's oscillator steps and bank share for the step length step_dt.
+  void SetSteps(int id) {
+    BranchLink& k = model.links[id];
+    k.step = MakeBranchSteps(model.models[id].mechanics, step_dt, options.integrator);
+    k.bank_keep = SwingBankKeep(model.models[id].mechanics, step_dt);
+  }
+
+  std::span<const int> Children(int id) const {
+    const TreeOrder& o = model.order;
+    return {o.child_list.data() + o.child_begin[id],
+            static_cast<size_t>(o.child_begin[id + 1] - o.child_begin[id])};
   }
 
   void UpdateGeometry() {
@@ -218,9 +229,7 @@ struct TreeDynamics::Impl {
     }
     if (dt != step_dt) {
       step_dt = dt;
-      scheduler.ForRange(0, size(), [&](int id) {
-        model.links[id].step = MakeBranchSteps(model.models[id].mechanics, dt, options.integrator);
-      });
+      scheduler.ForRange(0, size(), [&](int id) { SetSteps(id); });
     }
     const bool loaded_step = AnyLoad();
     if (loaded_step) {
@@ -228,13 +237,22 @@ struct TreeDynamics::Impl {
     } else if (loads.all_loaded || !loads.loaded.empty()) {
       loads.Clear();
     }
-    // One pass: a branch is advanced once its parent is, then posed on it and deformed.
+    // One pass, parents before children: a branch (advanced by its parent, or first of all for a
+    // trunk) is posed on its parent and deformed, then advances its children.
+    const std::span<const Load> step_loads =
+        loaded_step ? std::span<const Load>(loads.load) : std::span<const Load>();
+    const TreeOrder& order = model.order;
+    for (int i = order.level_begin[0]; i < order.level_begin[1]; ++i) {
+      const int root = order.level_order[i];
+      AdvanceRoot(model.links[root],
+                  loaded_step ? loads.load[root].q : std::array<double, 3>{0, 0, 0}, dt,
+                  state[root]);
+    }
     scheduler.TopDown(model.order, [&](int id) {
-      const BranchState* parent = ParentState(id);
-      AdvanceBranch(model.links[id], parent, loaded_step ? loads.load[id].q : kNoForce, dt,
-                    options.base_excitation, state[id]);
-      PoseBranch(model.links[id], model.models[id], parent, state[id]);
+      PoseBranch(model.links[id], model.models[id], ParentState(id), state[id]);
       DeformNodes(model.nodes, model.links[id], state[id], positions.data());
+      AdvanceChildren(id, Children(id), model.links, step_loads, dt, options.base_excitation,
+                      state);
     });
     time += dt;
     ++steps;
@@ -253,6 +271,7 @@ struct TreeDynamics::Impl {
         st.swing = ModalState{};
         st.base_acceleration.setZero();
         st.base_angular_acceleration.setZero();
+        st.swing_budget = st.swing_bank = 0.0;
       });
       UpdateGeometry();
     }
@@ -418,12 +437,7 @@ void TreeDynamics::SetModalState(int branch, const ModalState& s) {
 }
 
 double TreeDynamics::BranchEnergy(int branch) const {
-  const BranchMechanics& m = impl_->model.models.at(branch).mechanics;
-  const ModalState& s = impl_->state[branch].modal;
-  double e = 0.0;
-  for (int i = 0; i < 3; ++i)
-    e += OscillatorEnergy(m.modal_mass[i], m.frequency[i], s.q[i], s.v[i]);
-  return e;
+  return ModalEnergy(impl_->model.models.at(branch).mechanics, impl_->state[branch].modal);
 }
 
 double TreeDynamics::Energy() const {

@@ -18,13 +18,17 @@
 // trunk a little). A child also feels the acceleration of its base (linear and angular: the
 // inertial excitation of base-excited cantilevers), so branches the rope never touches swing, as
 // in the paper's Fig. 15. The coupling runs parent to child only (the paper treats branches as
-// independent systems driven by their parents), so a child's swing does not load its parent.
+// independent systems driven by their parents), so a child's swing does not load its parent and
+// every branch keeps its measured frequency and damping. The swings are paid for: the energy the
+// drive puts into a family's swings is drawn from what the parent's damping takes out of its
+// motion, so the tree's energy never grows without a load, even for a child tuned to its parent
+// (modal_step.h).
 //
 // The cost. One pass per step over the branches in parent-before-child order (level by level, the
-// branches of a level in parallel with TBB) advances each branch's three oscillators, places its
-// frame and deforms its nodes. Node data are structure-of-arrays floats with the mode-shape values
-// precomputed, so deforming a node is a few multiply-adds and the step is bound by memory
-// bandwidth (docs/benchmarks.md, "Dynamics").
+// branches of a level in parallel with TBB) places each branch's frame, deforms its nodes and
+// advances its children's oscillators. Node data are structure-of-arrays floats with the
+// mode-shape values precomputed, so deforming a node is a few multiply-adds and the step is bound
+// by memory bandwidth (docs/benchmarks.md, "Dynamics").
 //
 // The parts, in detail/: branch_model.h (the constants), branch_mechanics.h (mass distribution and
 // participations), modal_step.h (the oscillators), pose.h (where branches and points are),

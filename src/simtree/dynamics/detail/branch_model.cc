@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "simtree/core/units.h"
 #include "simtree/dynamics/detail/mode_shapes.h"
 
 namespace simtree::dynamics {
@@ -96,7 +97,10 @@ DynamicsModel BuildDynamicsModel(Tree input) {
     m.frame.col(2) = b.frame.w;
     m.rest_base = b.base().position;
     FillNodeTables(b, k, m, node);
-    if (b.parent >= 0) Attach(b, tree.branches[b.parent], out.models[b.parent], m, k);
+    if (b.parent >= 0) {
+      Attach(b, tree.branches[b.parent], out.models[b.parent], m, k);
+      out.links[b.parent].has_children = true;
+    }
     first += k.nodes;
   }
   return out;
@@ -109,6 +113,11 @@ void SetBranchMechanics(const BranchMechanics& mechanics, BranchModel& model, Br
   link.rot_u = mechanics.rot_u;
   link.rot_w = mechanics.rot_w;
   link.inverse_mass = mechanics.inverse_mass;
+  for (int i = 0; i < 3; ++i) {
+    const double w = kTwoPi * mechanics.frequency[i];
+    link.half_mass[i] = 0.5 * mechanics.modal_mass[i];
+    link.half_stiffness[i] = 0.5 * mechanics.modal_mass[i] * w * w;
+  }
 }
 
 }  // namespace simtree::dynamics

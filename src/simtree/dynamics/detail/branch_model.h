@@ -71,7 +71,14 @@ struct BranchLink {
   double lin_bend = 0, twist_rotation = 0;
   Eigen::Vector3d rot_u = Eigen::Vector3d::Zero(), rot_w = Eigen::Vector3d::Zero();
   std::array<double, 3> inverse_mass = {1, 1, 1};
+  // Half the modal masses and half the modal stiffnesses m w^2: the energy of a state is
+  // sum half_mass v^2 + half_stiffness q^2.
+  std::array<double, 3> half_mass = {0.5, 0.5, 0.5}, half_stiffness = {0.5, 0.5, 0.5};
+  bool has_children = false;           // whether its children's swings draw on it
   std::array<OscillatorStep, 3> step;  // for the step length of the last Step()
+  // The share of the swing bank (BranchState) kept over a step: the slowest of the three modes'
+  // free energy decay over it, e^(-2 zeta w dt).
+  double bank_keep = 1;
 };
 
 // The rest of a branch's constants.

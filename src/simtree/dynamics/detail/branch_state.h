@@ -19,6 +19,12 @@ struct BranchState {
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   Eigen::Vector3d base_acceleration = Eigen::Vector3d::Zero();  // world, linear
   Eigen::Vector3d base_angular_acceleration = Eigen::Vector3d::Zero();
+  // What this branch's children's swings may draw this step (J): what its damping takes out of
+  // its motion over the step, plus its bank.
+  double swing_budget = 0;
+  // What its damping took out of its motion earlier and its children have not drawn yet (J),
+  // fading as fast as its own motion does.
+  double swing_bank = 0;
 };
 
 }  // namespace simtree::dynamics
