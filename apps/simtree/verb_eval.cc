@@ -133,8 +133,9 @@ void RegisterEvalIdentification(CLI::App& eval) {
 void RegisterEval(CLI::App& app) {
   CLI::App* eval = app.add_subcommand(
       "eval", "Score a stage's output against the ground truth of a synth capture (gt/)");
-  eval->require_subcommand(1);
+  eval->require_subcommand(0, 1);
   RegisterEvalIdentification(*eval);
+  AddEvalRun(*eval);
 }
 
 }  // namespace simtree::cli
