@@ -351,7 +351,8 @@ ojson ScoreChain(const Inputs& in, const RunEvalOptions& o, RunEvaluation& ev, s
   }
   if (!values.empty()) {
     std::sort(values.begin(), values.end());
-    ev.chain_median_nrmse = values[values.size() / 2];
+    const size_t n = values.size();
+    ev.chain_median_nrmse = 0.5 * (values[(n - 1) / 2] + values[n / 2]);
   }
   md += fmt::format("\nmedian NRMSE {:.2f} (target <= 0.3)\n\n", ev.chain_median_nrmse);
   return {{"scored", true},
