@@ -43,7 +43,7 @@ Scene PulledScene(const Eigen::Vector3d& force, double arc) {
   sim.SettleStatic();
   s.world_from_camera.linear() =
       Eigen::AngleAxisd(0.4, Eigen::Vector3d(0.2, 1, 0.3).normalized()).toRotationMatrix();
-  s.world_from_camera.translation() = {0.5, -3, 1.2};
+  s.world_from_camera.translation() = Eigen::Vector3d(0.5, -3, 1.2);
   const Eigen::Isometry3d camera_from_world = s.world_from_camera.inverse();
   for (const Marker& m : s.tree.markers) {
     MarkerTrack track;

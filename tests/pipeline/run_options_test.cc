@@ -59,7 +59,9 @@ TEST(StageTable, StagesInPipelineOrderEachWithItsFolder) {
   EXPECT_EQ(StageNames(), expected);
   for (const Stage& s : StageTable()) {
     ASSERT_FALSE(s.outputs.empty()) << s.name;
-    if (s.folder) EXPECT_EQ(s.outputs.front(), s.name);
+    if (s.folder) {
+      EXPECT_EQ(s.outputs.front(), s.name);
+    }
     for (const std::string& input : s.inputs) {
       EXPECT_FALSE(Contains(input, "gt/")) << s.name << " reads " << input;
     }
@@ -105,13 +107,14 @@ TEST(CheckInputs, BadCapturesFailBeforeAnyWorkNamingWhatIsMissing) {
   EXPECT_TRUE(Contains(ErrorOf([&] { CheckInputs(root / "ok", root / "r", o); }), "nope.csv"));
 }
 
-TEST(Run, RefusesBadInputsWithoutWritingAnything) {
+TEST(RunPipeline, RefusesBadInputsWithoutWritingAnything) {
   const fs::path root = simtree::test::TempDir();
   FakeCapture(root / "capture");
   fs::remove(root / "capture" / "pull" / "markers.json");
   RunOptions o;
   o.tracks = root / "capture" / "tracks.csv";
-  EXPECT_THROW(Run(root / "capture", root / "result", o), simtree::InputError);
+  EXPECT_THROW(simtree::pipeline::Run(root / "capture", root / "result", o),
+               simtree::InputError);
   EXPECT_FALSE(fs::exists(root / "result"));
 }
 
