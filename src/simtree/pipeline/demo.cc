@@ -70,10 +70,12 @@ DemoResult RunDemo(const fs::path& out, const DemoOptions& options) {
   demo.synthesised = Synthesise(demo.capture, options);
   RunOptions run = options.run;
   run.render = options.render;
-  if (!detail::TrackingBuilt()) {
+  if (!detail::TrackingBuilt() || !fs::exists(demo.capture / "pull" / "init.json")) {
     spdlog::warn(
-        "demo: tracking is not a stage of this build: the trajectories are the capture's true "
-        "marker centres with a tracker's errors added ({}/tracks.csv)",
+        "demo: {}: the trajectories are the capture's true marker centres with a tracker's "
+        "errors added ({}/tracks.csv)",
+        detail::TrackingBuilt() ? "the capture has no pull/init.json to start tracking from"
+                                : "tracking is not a stage of this build",
         out.string());
     run.tracks = StandInTracks(demo.capture, out);
     demo.simulated_tracks = true;
