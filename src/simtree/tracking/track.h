@@ -137,8 +137,9 @@ struct TrackOutputOptions {
   int trail_frames = 20;
 };
 
-// Writes trajectories.csv, boxes.csv and track_summary.json into `out_dir` (created when absent),
-// and the overlay frames and video when asked. Every file appears whole or not at all. Throws
+// Writes trajectories.csv, boxes.csv, track_summary.json and a copy of the stream's markers.json
+// (what `identify` reads beside the trajectories) into `out_dir` (created when absent), and the
+// overlay frames and video when asked. Every file appears whole or not at all. Throws
 // IoError when ffmpeg is asked for and not installed.
 void WriteTrackOutputs(const TrackResult& result, const std::filesystem::path& out_dir,
                        const TrackOutputOptions& options = {});

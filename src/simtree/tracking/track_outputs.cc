@@ -41,12 +41,10 @@ std::string SummaryJson(const TrackResult& result) {
 
 void WriteOverlay(const TrackResult& result, const fs::path& out_dir,
                   const TrackOutputOptions& options) {
-  const PullStream* stream = nullptr;
   PullStream pull;
   pull.directory = result.pull_dir;
   pull.intrinsics = result.intrinsics;
   pull.frames = ReadFramesCsv(result.pull_dir / "frames.csv");
-  stream = &pull;
   if (pull.frames.size() != result.boxes.size()) {
     throw InputError((result.pull_dir / "frames.csv").string(), "",
                      fmt::format("expected the {} frames tracked, found {}", result.boxes.size(),
@@ -55,7 +53,7 @@ void WriteOverlay(const TrackResult& result, const fs::path& out_dir,
   AtomicDirectory dir(out_dir / "overlay");
   Progress progress("overlay", static_cast<int64_t>(result.boxes.size()), "frames");
   for (size_t i = 0; i < result.boxes.size(); ++i) {
-    const RgbImage color = ReadColorImage(stream->directory / stream->frames[i].color);
+    const RgbImage color = ReadColorImage(pull.directory / pull.frames[i].color);
     WritePng(detail::DrawOverlay(color, result, i, options.trail_frames),
              dir.path() / fmt::format("{:06d}.png", i));
     progress.Advance();
@@ -80,6 +78,9 @@ void WriteTrackOutputs(const TrackResult& result, const fs::path& out_dir,
   WriteTrajectoriesCsv(result.trajectories, out_dir / "trajectories.csv");
   WriteBoxesCsv(result.boxes, out_dir / "boxes.csv");
   WriteFileAtomically(out_dir / "track_summary.json", SummaryJson(result));
+  // identify finds the marker links beside the trajectories.
+  const fs::path markers = result.pull_dir / "markers.json";
+  if (fs::exists(markers)) WriteFileAtomically(out_dir / "markers.json", ReadFile(markers));
   if (options.overlay || options.video) WriteOverlay(result, out_dir, options);
 }
 

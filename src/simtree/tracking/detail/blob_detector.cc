@@ -5,6 +5,19 @@
 
 namespace simtree::tracking::detail {
 
+bool OnDepthEdge(const DepthImage& depth, int x, int y, double edge_units) {
+  const double d = depth.at(x, y);
+  const int dx[4] = {1, -1, 0, 0};
+  const int dy[4] = {0, 0, 1, -1};
+  for (int k = 0; k < 4; ++k) {
+    const int nx = x + dx[k], ny = y + dy[k];
+    if (nx < 0 || ny < 0 || nx >= depth.width || ny >= depth.height) continue;
+    const double n = depth.at(nx, ny);
+    if (n == 0.0 || std::abs(n - d) > edge_units) return true;
+  }
+  return false;
+}
+
 SearchWindow WindowAround(const Eigen::Vector2d& center, double half_size, int width,
                           int height) {
   SearchWindow w;
@@ -73,16 +86,23 @@ Blob BlobDetector::Grow(const RgbImage& image, int seed) {
   return blob;
 }
 
-void BlobDetector::SplitByDepth(const DepthImage& depth, double depth_scale_m, Blob blob,
-                                std::vector<Blob>* out) const {
+void BlobDetector::SplitByDepth(const RgbImage& color, const DepthImage& depth,
+                                double depth_scale_m, Blob blob, std::vector<Blob>* out) {
+  // Depths of the blob's clean tape pixels: a pixel that mixes the tape with what is behind it
+  // (weaker colour) may carry the background's depth, so it takes no part in finding the layers.
+  const double edge_units = options_.split_depth_m / depth_scale_m;
+  std::vector<char> clean(blob.pixels.size(), 0);
   std::vector<uint16_t> values;
   values.reserve(blob.pixels.size());
-  for (int i : blob.pixels) {
-    if (depth.pixels[i] != 0) values.push_back(depth.pixels[i]);
+  for (size_t k = 0; k < blob.pixels.size(); ++k) {
+    const int i = blob.pixels[k];
+    clean[k] = depth.pixels[i] != 0 && WeightAt(color, i) >= kCleanWeight;
+    if (clean[k]) values.push_back(depth.pixels[i]);
   }
   std::sort(values.begin(), values.end());
-  // The widest gap between consecutive depths, each side keeping enough pixels.
-  const int keep = options_.min_blob_pixels;
+  // The widest gap between consecutive depths, each layer keeping a fifth of the pixels.
+  const int keep = std::max(options_.min_blob_pixels,
+                            static_cast<int>(std::ceil(0.2 * static_cast<double>(values.size()))));
   double best_gap = 0.0;
   double threshold = 0.0;
   for (int k = keep; k + keep <= static_cast<int>(values.size()); ++k) {
@@ -92,16 +112,17 @@ void BlobDetector::SplitByDepth(const DepthImage& depth, double depth_scale_m, B
       threshold = 0.5 * (values[k] + values[k - 1]);
     }
   }
-  if (best_gap * depth_scale_m < options_.split_depth_m) {
+  if (best_gap < edge_units) {
     out->push_back(std::move(blob));
     return;
   }
   Blob near, far;
   std::vector<int> unknown;
   Eigen::Vector2d near_sum = Eigen::Vector2d::Zero(), far_sum = Eigen::Vector2d::Zero();
-  for (int i : blob.pixels) {
+  for (size_t k = 0; k < blob.pixels.size(); ++k) {
+    const int i = blob.pixels[k];
     const Eigen::Vector2d p(i % depth.width, i / depth.width);
-    if (depth.pixels[i] == 0) {
+    if (!clean[k]) {
       unknown.push_back(i);
     } else if (depth.pixels[i] < threshold) {
       near.pixels.push_back(i);
@@ -111,7 +132,7 @@ void BlobDetector::SplitByDepth(const DepthImage& depth, double depth_scale_m, B
       far_sum += p;
     }
   }
-  // Pixels without depth join the layer whose centre is nearer in the image.
+  // Pixels without a clean depth join the layer whose centre is nearer in the image.
   const Eigen::Vector2d near_c = near_sum / static_cast<double>(near.pixels.size());
   const Eigen::Vector2d far_c = far_sum / static_cast<double>(far.pixels.size());
   for (int i : unknown) {
@@ -139,7 +160,7 @@ std::vector<Blob> BlobDetector::Find(const RgbdImage& image,
     }
   }
   std::vector<Blob> blobs;
-  for (Blob& blob : grown) SplitByDepth(image.depth, image.intrinsics.depth_scale_m, std::move(blob), &blobs);
+  for (Blob& blob : grown) SplitByDepth(image.color, image.depth, image.intrinsics.depth_scale_m, std::move(blob), &blobs);
   // The soft ring: background neighbours that may hold part of the tape.
   for (Blob& blob : blobs) {
     for (int i : blob.pixels) {

@@ -28,6 +28,12 @@ struct Blob {
   std::vector<int> ring;  // 8-neighbours of `pixels` not in any blob (mixed tape/background)
 };
 
+// A pixel at least this much tape (TapeColorModel::Weight) is clean: its depth is the tape's.
+inline constexpr float kCleanWeight = 0.75f;
+
+// Whether pixel (x, y) has a 4-neighbour without depth or more than `edge_units` away.
+bool OnDepthEdge(const DepthImage& depth, int x, int y, double edge_units);
+
 // A square search window, pixels [x0, x1) x [y0, y1).
 struct SearchWindow {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
@@ -51,8 +57,8 @@ class BlobDetector {
   void Prepare(const RgbImage& image);
   bool IsTape(const RgbImage& image, int index);
   Blob Grow(const RgbImage& image, int seed);
-  void SplitByDepth(const DepthImage& depth, double depth_scale_m, Blob blob,
-                    std::vector<Blob>* out) const;
+  void SplitByDepth(const RgbImage& color, const DepthImage& depth, double depth_scale_m,
+                    Blob blob, std::vector<Blob>* out);
 
   TapeColorModel model_;
   BlobDetectorOptions options_;

@@ -73,10 +73,10 @@ float TapeColorModel::Weight(uint8_t r, uint8_t g, uint8_t b) const {
   float h, s, v;
   RgbToHsv(r, g, b, &h, &s, &v);
   if (v < 0.5 * min_value) return 0.0f;
-  const float low = static_cast<float>(0.5 * min_saturation);
+  const float low = static_cast<float>(0.7 * min_saturation);
   const float sat = Clamp01((s - low) / static_cast<float>(full_saturation - low));
   const double hue_out = HueDistance(h, hue_deg) - hue_tolerance_deg;
-  const float hue = hue_out <= 0.0 ? 1.0f : Clamp01(1.0f - static_cast<float>(hue_out / 20.0));
+  const float hue = hue_out <= 0.0 ? 1.0f : Clamp01(1.0f - static_cast<float>(hue_out / 10.0));
   const float val = Clamp01(static_cast<float>((v - 0.5 * min_value) / (0.5 * min_value)));
   return sat * hue * val;
 }

@@ -24,8 +24,8 @@ struct TapeColorModel {
 
   // True when the pixel is tape (hue inside the interval, saturated and bright enough).
   bool Contains(uint8_t r, uint8_t g, uint8_t b) const;
-  // 0 (not tape) to 1 (all tape): saturation graded between a fraction of min_saturation and
-  // full_saturation, hue graded over a further tolerance outside the interval.
+  // 0 (not tape) to 1 (all tape): saturation graded from 0.7 min_saturation to full_saturation,
+  // hue graded over 10 degrees outside the interval.
   float Weight(uint8_t r, uint8_t g, uint8_t b) const;
   std::string Describe() const;
 };

@@ -14,20 +14,41 @@ double Median(std::vector<double>& values) {
   return values[mid];
 }
 
-bool OnDepthEdge(const DepthImage& depth, int x, int y, double edge_units) {
-  const double d = depth.at(x, y);
-  const int dx[4] = {1, -1, 0, 0};
-  const int dy[4] = {0, 0, 1, -1};
-  for (int k = 0; k < 4; ++k) {
-    const int nx = x + dx[k], ny = y + dy[k];
-    if (nx < 0 || ny < 0 || nx >= depth.width || ny >= depth.height) continue;
-    const double n = depth.at(nx, ny);
-    if (n == 0.0 || std::abs(n - d) > edge_units) return true;
-  }
-  return false;
+// The tape's chroma along its own hue: linear in RGB, so a pixel that is a share c of tape and
+// 1 - c of background lies a share c of the way from the background's value to the tape's.
+double Chroma(const uint8_t* rgb, double cos_h, double sin_h) {
+  const double a = rgb[0] - 0.5 * (rgb[1] + rgb[2]);
+  const double b = 0.8660254037844386 * (rgb[1] - rgb[2]);
+  return a * cos_h + b * sin_h;
 }
 
 }  // namespace
+
+std::vector<double> TapeCoverage(const Blob& blob, const RgbImage& color, BlobDetector& detector) {
+  const double h = detector.model().hue_deg * M_PI / 180.0;
+  const double cos_h = std::cos(h), sin_h = std::sin(h);
+  std::vector<double> core, background;
+  for (int i : blob.pixels) core.push_back(Chroma(&color.pixels[3 * size_t(i)], cos_h, sin_h));
+  for (int i : blob.ring) {
+    if (detector.WeightAt(color, i) == 0.0f) {
+      background.push_back(Chroma(&color.pixels[3 * size_t(i)], cos_h, sin_h));
+    }
+  }
+  std::vector<double> sorted = core;
+  std::sort(sorted.begin(), sorted.end());
+  const double tape = sorted[std::min(sorted.size() - 1, (3 * sorted.size()) / 4)];
+  const double back = background.empty() ? 0.0 : Median(background);
+  const double span = std::max(1.0, tape - back);
+  std::vector<double> out;
+  out.reserve(blob.pixels.size() + blob.ring.size());
+  for (const std::vector<int>* list : {&blob.pixels, &blob.ring}) {
+    for (int i : *list) {
+      const double c = (Chroma(&color.pixels[3 * size_t(i)], cos_h, sin_h) - back) / span;
+      out.push_back(std::clamp(c, 0.0, 1.0));
+    }
+  }
+  return out;
+}
 
 double RobustDepth(const DepthImage& depth, double depth_scale_m, const std::vector<int>& pixels,
                    double edge_m) {
@@ -56,17 +77,20 @@ Detection MeasureBlob(const Blob& blob, const RgbdImage& image, BlobDetector& de
   Detection det;
   det.pixel_count = static_cast<int>(blob.pixels.size());
   const int width = image.color.width;
+  const std::vector<double> coverage = TapeCoverage(blob, image.color, detector);
   double sw = 0.0;
   Eigen::Vector2d s1 = Eigen::Vector2d::Zero();
   Eigen::Matrix2d s2 = Eigen::Matrix2d::Zero();
-  const auto add = [&](int i, double w) {
-    const Eigen::Vector2d p(i % width, i / width);
-    sw += w;
-    s1 += w * p;
-    s2 += w * p * p.transpose();
-  };
-  for (int i : blob.pixels) add(i, std::max(0.5f, detector.WeightAt(image.color, i)));
-  for (int i : blob.ring) add(i, detector.WeightAt(image.color, i));
+  size_t next = 0;
+  for (const std::vector<int>* list : {&blob.pixels, &blob.ring}) {
+    for (int i : *list) {
+      const double w = coverage[next++];
+      const Eigen::Vector2d p(i % width, i / width);
+      sw += w;
+      s1 += w * p;
+      s2 += w * p * p.transpose();
+    }
+  }
   det.weight = sw;
   det.center = s1 / sw;
   const Eigen::Matrix2d cov = s2 / sw - det.center * det.center.transpose();
@@ -74,14 +98,20 @@ Detection MeasureBlob(const Blob& blob, const RgbdImage& image, BlobDetector& de
   Eigen::Vector2d half = Eigen::Vector2d::Zero();
   Eigen::Vector2d semi;  // the rectangle's half-lengths along its two axes
   for (int k = 0; k < 2; ++k) {
-    semi[k] = options.box_scale * std::sqrt(std::max(0.0, 3.0 * (eig.eigenvalues()[k] - 1.0 / 12.0)));
+    semi[k] = options.box_scale * std::sqrt(3.0 * (std::max(0.0, eig.eigenvalues()[k]) + 1.0 / 12.0));
     semi[k] = std::max(semi[k], 0.5);
     half += semi[k] * eig.eigenvectors().col(k).cwiseAbs();
   }
   det.half_extent = half + Eigen::Vector2d::Constant(options.box_margin_px);
 
   const CameraIntrinsics& k = image.intrinsics;
-  const double z_surface = RobustDepth(image.depth, k.depth_scale_m, blob.pixels, options.edge_m);
+  // Depth from the pixels that are mostly tape (a mixed pixel's depth may be the background's).
+  std::vector<int> strong;
+  for (int i : blob.pixels) {
+    if (detector.WeightAt(image.color, i) >= kCleanWeight) strong.push_back(i);
+  }
+  const double z_surface = RobustDepth(image.depth, k.depth_scale_m,
+                                       strong.size() >= 2 ? strong : blob.pixels, options.edge_m);
   if (z_surface > 0.0) {
     det.has_depth = true;
     // The smaller half-length spans the branch: its radius in pixels.

@@ -1,12 +1,12 @@
 #pragma once
-// What one tape blob says about its marker: the sub-pixel centre (the tape-weighted centroid of
-// its pixels and their mixed ring), the box of the whole tape band, and the marker's 3D centre on
+// What one tape blob says about its marker: the sub-pixel centre (the centroid of its pixels and
+// their mixed ring, each weighted by its share of tape, TapeCoverage), the box of the whole tape band, and the marker's 3D centre on
 // the branch axis.
 //
 // Box: a band seen from the side projects to about a rectangle (its length along the branch by
-// the branch's diameter across it). The weighted second moments of the blob give the rectangle's
-// axes and, for a uniform rectangle, half-lengths sqrt(3 (lambda - 1/12)) (the 1/12 is the
-// pixel's own extent); the box bounds that rectangle grown by `box_margin_px`.
+// the branch's diameter across it). The weighted second moments of the blob's pixels, plus each
+// pixel's own extent (1/12 px^2), give the rectangle's axes and, for a uniform rectangle,
+// half-lengths sqrt(3 lambda); the box bounds that rectangle grown by `box_margin_px`.
 //
 // 3D centre: the median depth of the blob's own pixels, after dropping pixels on a depth edge
 // (a 4-neighbour more than `edge_m` away: flying pixels between the tape and what is behind it)
@@ -26,7 +26,7 @@ namespace simtree::tracking::detail {
 
 struct MeasureOptions {
   double edge_m = 0.03;            // depth step that marks a depth edge
-  double box_margin_px = 0.5;      // added to each side of the rectangle's box
+  double box_margin_px = 0.0;      // added to each side of the rectangle's box
   double box_scale = 1.0;          // scales the rectangle's half-lengths
   double axis_offset_ratio = 0.85; // axis behind the visible surface, in branch radii
 };
@@ -49,6 +49,11 @@ struct Detection {
 // Measures a blob of the last frame `detector` searched.
 Detection MeasureBlob(const Blob& blob, const RgbdImage& image, BlobDetector& detector,
                       const MeasureOptions& options);
+
+// The share of each pixel of `blob` (its pixels, then its ring) covered by tape, from the tape's
+// chroma: 1 at the blob's typical tape pixel, 0 at its background (the median of the ring pixels
+// with no tape colour).
+std::vector<double> TapeCoverage(const Blob& blob, const RgbImage& color, BlobDetector& detector);
 
 // Robust depth (m) of `pixels` of `depth`: 0 when none has a usable measurement.
 double RobustDepth(const DepthImage& depth, double depth_scale_m, const std::vector<int>& pixels,
