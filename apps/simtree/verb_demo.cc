@@ -37,8 +37,9 @@ void RegisterDemo(CLI::App& app) {
     PrintRunTable(demo.run);
     std::printf("\n%s\n", demo.evaluation.markdown.c_str());
     if (demo.simulated_tracks) {
-      std::printf("note: trajectories = the truth with a tracker's errors (tracking is not a "
-                  "stage of this build)\n");
+      std::printf(
+          "note: trajectories = the truth with a tracker's errors (tracking is not a "
+          "stage of this build)\n");
     }
     std::printf("demo done in %.1f s\nopen %s\n", demo.wall_s, demo.report.string().c_str());
   });

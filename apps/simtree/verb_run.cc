@@ -75,9 +75,8 @@ void RegisterRun(CLI::App& app) {
       "simtree run capture/ --out result/ --tracks tracks.csv --until reconstruct",
       "simtree eval result/ --gt capture/   # a synth capture: every stage against the truth",
   }));
-  verb->callback([args] {
-    PrintRunTable(pipeline::Run(args->capture, args->output, args->options));
-  });
+  verb->callback(
+      [args] { PrintRunTable(pipeline::Run(args->capture, args->output, args->options)); });
 }
 
 }  // namespace simtree::cli

@@ -68,7 +68,7 @@ Scene PulledScene(const Eigen::Vector3d& force, double arc) {
 
 TEST(FitPull, RecoversTheRopePointAndForceOfAStaticPull) {
   const Eigen::Vector3d force(0, 30, -40);
-  const double arc = 2.5 / 6 * 1.5;  // one of the candidate points on branch 1
+  const double arc = (0.2 + 0.75 * 2.5 / 6) * 1.5;  // one of the candidate points on branch 1
   const Scene s = PulledScene(force, arc);
   const PullFit fit = FitPull(s.tree, s.tracks, s.world_from_camera, 2.0, {});
   EXPECT_EQ(fit.branch, 1);

@@ -94,14 +94,19 @@ TEST(CheckInputs, BadCapturesFailBeforeAnyWorkNamingWhatIsMissing) {
 
   FakeCapture(root / "no_markers");
   fs::remove(root / "no_markers" / "pull" / "markers.json");
-  EXPECT_TRUE(Contains(ErrorOf([&] { CheckInputs(root / "no_markers", root / "r", o); }),
-                       "markers.json"));
+  EXPECT_TRUE(
+      Contains(ErrorOf([&] { CheckInputs(root / "no_markers", root / "r", o); }), "markers.json"));
 
   EXPECT_TRUE(Contains(ErrorOf([&] { CheckInputs(root / "ok", root / "ok", o); }), "capture"));
   EXPECT_TRUE(
       Contains(ErrorOf([&] { CheckInputs(root / "ok", root / "ok" / "result", o); }), "capture"));
-  EXPECT_TRUE(Contains(ErrorOf([&] { CheckInputs(root / "missing", root / "r", o); }),
-                       "capture folder"));
+  EXPECT_TRUE(
+      Contains(ErrorOf([&] { CheckInputs(root / "missing", root / "r", o); }), "capture folder"));
+
+  RunOptions track;
+  EXPECT_TRUE(Contains(ErrorOf([&] { CheckInputs(root / "ok", root / "r", track); }), "init.json"));
+  simtree::test::WriteText(root / "ok" / "pull" / "init.json", "{}");
+  EXPECT_EQ(ErrorOf([&] { CheckInputs(root / "ok", root / "r", track); }), "");
 
   o.tracks = root / "nope.csv";
   EXPECT_TRUE(Contains(ErrorOf([&] { CheckInputs(root / "ok", root / "r", o); }), "nope.csv"));
@@ -113,8 +118,7 @@ TEST(RunPipeline, RefusesBadInputsWithoutWritingAnything) {
   fs::remove(root / "capture" / "pull" / "markers.json");
   RunOptions o;
   o.tracks = root / "capture" / "tracks.csv";
-  EXPECT_THROW(simtree::pipeline::Run(root / "capture", root / "result", o),
-               simtree::InputError);
+  EXPECT_THROW(simtree::pipeline::Run(root / "capture", root / "result", o), simtree::InputError);
   EXPECT_FALSE(fs::exists(root / "result"));
 }
 

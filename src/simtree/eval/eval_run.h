@@ -6,6 +6,8 @@
 //    tree (ViewPoseError, relative to the anchor view);
 //  - reconstruction: the static tree taken into the truth's frame by the anchor view's poses,
 //    scored by ScoreAgainstTruth (recall, precision, skeleton distance, radius error);
+//  - tracking: track/boxes.csv and trajectories.csv against gt/markers_2d.json and
+//    gt/trajectories.csv (ScoreTracking, paper Table III), when the run tracked (not --tracks);
 //  - identification: every marker link against the FEM truth (ScoreLinks);
 //  - the chain: the simulated held-out markers (identify/placements.json "held_out": markers
 //    identification never saw) against their true motion over the first `chain_window_s` after

@@ -86,8 +86,7 @@ DemoResult RunDemo(const fs::path& out, const DemoOptions& options) {
   report::ReportOptions report;
   report.allow_missing_javascript = run.allow_missing_javascript;
   demo.report = report::WriteReport(demo.result, report).path;
-  demo.wall_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  demo.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return demo;
 }
 

@@ -43,8 +43,8 @@ struct StageRecord {
   std::string status = "not run";  // "done", "failed", "not run"
   bool reused = false;             // done by an earlier run, its outputs kept
   double wall_s = 0.0;
-  std::string summary;  // one line
-  std::string error;    // why it failed
+  std::string summary;                       // one line
+  std::string error;                         // why it failed
   std::vector<std::string> inputs, outputs;  // "capture/..." or relative to the result folder
   std::string input_fingerprint, output_fingerprint;
 };

@@ -103,14 +103,14 @@ double Seconds(std::chrono::steady_clock::time_point start) {
 void RunOptions::Validate() const {
   const char* source = "run options";
   if (!from.empty() && StageIndex(from) >= static_cast<int>(StageNames().size())) {
-    throw InputError(source, "from",
-                     fmt::format("expected a stage ({}), got \"{}\"",
-                                 fmt::join(StageNames(), ", "), from));
+    throw InputError(
+        source, "from",
+        fmt::format("expected a stage ({}), got \"{}\"", fmt::join(StageNames(), ", "), from));
   }
   if (!until.empty() && StageIndex(until) >= static_cast<int>(StageNames().size())) {
-    throw InputError(source, "until",
-                     fmt::format("expected a stage ({}), got \"{}\"",
-                                 fmt::join(StageNames(), ", "), until));
+    throw InputError(
+        source, "until",
+        fmt::format("expected a stage ({}), got \"{}\"", fmt::join(StageNames(), ", "), until));
   }
   if (!from.empty() && !until.empty() && StageIndex(until) < StageIndex(from)) {
     throw InputError(source, "until",
@@ -170,6 +170,11 @@ void CheckInputs(const fs::path& capture, const fs::path& result, const RunOptio
         "tracking the pull stream is not built in this version: give the marker trajectories "
         "with --tracks FILE");
   }
+  if (options.tracks.empty() && !fs::is_regular_file(capture / "pull" / "init.json")) {
+    throw InputError(capture.string(), "pull/init.json",
+                     "expected the markers' first-frame pixels to start tracking from "
+                     "(simtree.track_init), found none; or give the trajectories with --tracks");
+  }
 }
 
 namespace {
@@ -200,10 +205,10 @@ struct Runner {
       return;
     }
     const std::string input = fingerprints.Of(stage, options);
-    std::string reason = options.force             ? "--force"
-                         : index >= first_forced   ? "--from " + options.from
-                         : upstream_ran            ? "an earlier stage ran"
-                                                   : RerunReason(old, input, context.result_dir);
+    std::string reason = options.force           ? "--force"
+                         : index >= first_forced ? "--from " + options.from
+                         : upstream_ran          ? "an earlier stage ran"
+                                                 : RerunReason(old, input, context.result_dir);
     if (reason.empty()) {
       record = *old;
       record.reused = true;

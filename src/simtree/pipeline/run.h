@@ -39,7 +39,7 @@ struct RunOptions {
   // Leaf markers (no marker links to them) kept from identification, so that the simulated
   // chain can be scored on markers identification never saw (>= 0).
   int held_out_markers = 2;
-  bool render = true;  // draw the simulation beside the capture's frames (needs OpenGL)
+  bool render = true;      // draw the simulation beside the capture's frames (needs OpenGL)
   int render_width = 640;  // pixels of the simulated half of a side-by-side frame (> 0)
   // The report's JavaScript libraries may be missing (the page then says so) instead of failing.
   bool allow_missing_javascript = true;

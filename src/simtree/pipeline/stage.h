@@ -25,9 +25,7 @@ struct StageContext {
   // stage succeeds (the report stage: the result folder itself).
   std::filesystem::path out_dir;
 
-  std::filesystem::path Result(const std::string& relative) const {
-    return result_dir / relative;
-  }
+  std::filesystem::path Result(const std::string& relative) const { return result_dir / relative; }
 };
 
 struct Stage {

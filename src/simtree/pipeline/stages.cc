@@ -33,7 +33,9 @@ std::vector<Stage> MakeTable() {
        {"track/trajectories.csv", "capture/pull/markers.json", "register/pull_camera.json",
         "reconstruct/static.json"},
        {"identify"},
-       [](const RunOptions& o) { return ojson{{"held_out_markers", o.held_out_markers}}; },
+       [](const RunOptions& o) {
+         return ojson{{"held_out_markers", o.held_out_markers}};
+       },
        RunIdentifyStage},
       {"build", {"reconstruct/static.json", "identify"}, {"build"}, NoOptions, RunBuildStage},
       {"simulate",
@@ -45,11 +47,13 @@ std::vector<Stage> MakeTable() {
        {"build/simready.json", "simulate/simulation.json", "register/pull_camera.json",
         "capture/pull"},
        {"render"},
-       [](const RunOptions& o) { return ojson{{"render_width", o.render_width}}; },
+       [](const RunOptions& o) {
+         return ojson{{"render_width", o.render_width}};
+       },
        RunRenderStage},
       {"report",
-       {"preprocess", "register", "reconstruct", "track", "identify", "build", "simulate",
-        "render", "eval"},
+       {"preprocess", "register", "reconstruct", "track", "identify", "build", "simulate", "render",
+        "eval"},
        {"report.html"},
        NoOptions,
        RunReportStage,

@@ -17,9 +17,9 @@ void WritePlacements(const identification::TreeMarkers& placed, const std::vecto
                      const std::filesystem::path& path) {
   nlohmann::ordered_json markers = nlohmann::ordered_json::array();
   for (const MarkerLink& link : placed.markers) {
-    const auto it = std::find_if(
-        placed.placements.begin(), placed.placements.end(),
-        [&](const identification::MarkerPlacement& p) { return p.marker == link.id; });
+    const auto it =
+        std::find_if(placed.placements.begin(), placed.placements.end(),
+                     [&](const identification::MarkerPlacement& p) { return p.marker == link.id; });
     if (it == placed.placements.end() || it->branch < 0) continue;
     const Eigen::Vector3d& r = it->rest_world;
     markers.push_back({{"id", link.id},

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <limits>
 
-#include <Eigen/Dense>
 #include <fmt/format.h>
+#include <Eigen/Dense>
 
 #include "simtree/core/error.h"
 #include "simtree/dynamics/tree_dynamics.h"
@@ -68,7 +68,9 @@ std::vector<std::pair<int, double>> Candidates(const Tree& tree, const PullFitOp
   for (const Branch& b : tree.branches) {
     if (b.level > o.max_level) continue;
     for (int k = 0; k < o.arc_samples; ++k) {
-      out.emplace_back(b.id, (k + 0.5) / o.arc_samples * b.Length());
+      const double share = (k + 0.5) / o.arc_samples;
+      out.emplace_back(
+          b.id, (o.min_arc_share + share * (o.max_arc_share - o.min_arc_share)) * b.Length());
     }
   }
   return out;
@@ -119,12 +121,15 @@ void PullFitOptions::Validate() const {
     if (!ok) throw InputError(kSource, field, message);
   };
   check(rest_s > 0 && std::isfinite(rest_s), "rest_s", "expected seconds > 0");
-  check(held_window_s > 0 && std::isfinite(held_window_s), "held_window_s",
-        "expected seconds > 0");
+  check(held_window_s > 0 && std::isfinite(held_window_s), "held_window_s", "expected seconds > 0");
   check(release_margin_s >= 0 && std::isfinite(release_margin_s), "release_margin_s",
         "expected seconds >= 0");
   check(arc_samples >= 1, "arc_samples", "expected at least 1");
   check(max_level >= 0, "max_level", "expected a level >= 0");
+  check(min_arc_share >= 0 && min_arc_share < 1, "min_arc_share", "expected a share in [0, 1)");
+  check(max_arc_share > min_arc_share && max_arc_share <= 1, "max_arc_share",
+        "expected a share in (min_arc_share, 1]");
+  check(max_force_n > 0 && std::isfinite(max_force_n), "max_force_n", "expected newtons > 0");
   check(anchor_distance_m > 0 && std::isfinite(anchor_distance_m), "anchor_distance_m",
         "expected metres > 0");
   check(hold_fraction > 0 && hold_fraction <= 1, "hold_fraction", "expected a share in (0, 1]");
@@ -170,14 +175,19 @@ PullFit FitPull(const Tree& tree, const Trajectories& tracks,
     const Eigen::MatrixXd c = Compliance(sim, obs, branch, arc);
     const Eigen::Vector3d force = c.colPivHouseholderQr().solve(d);
     const double residual = (c * force - d).norm();
-    if (!force.allFinite() || residual >= best_residual) continue;
+    if (!force.allFinite() || force.norm() > options.max_force_n || residual >= best_residual) {
+      continue;
+    }
     best_residual = residual;
     best.branch = branch;
     best.arc_length = arc;
     best.force = force;
   }
   if (!std::isfinite(best_residual)) {
-    throw InputError("simready tree", "", "no branch point explains the held displacements");
+    throw InputError("simready tree", "",
+                     fmt::format("no branch point explains the held displacements with a force "
+                                 "of at most {} N",
+                                 options.max_force_n));
   }
   best.point = tree.branches[best.branch].PointAt(best.arc_length);
   best.residual_rms_m = best_residual / std::sqrt(static_cast<double>(obs.size()));

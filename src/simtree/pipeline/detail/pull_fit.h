@@ -16,11 +16,16 @@
 namespace simtree::pipeline::detail {
 
 struct PullFitOptions {
-  double rest_s = 0.3;           // s from the record's start averaged for the rest pose (> 0)
-  double held_window_s = 0.3;    // s averaged for the held pose, before the release (> 0)
+  double rest_s = 0.3;            // s from the record's start averaged for the rest pose (> 0)
+  double held_window_s = 0.3;     // s averaged for the held pose, before the release (> 0)
   double release_margin_s = 0.1;  // s before the release left out of the held window (>= 0)
-  int arc_samples = 6;           // candidate rope points per branch (>= 1)
-  int max_level = 2;             // deepest branch level a rope is tried on (>= 0)
+  int arc_samples = 6;            // candidate rope points per branch (>= 1)...
+  double min_arc_share = 0.2;     // ... from this share of its length from its base [0, 1) ...
+  double max_arc_share = 0.95;    // ... to this share (> min_arc_share, <= 1)
+  // A rope point needing more than this to explain the displacements is no pull a person makes
+  // (a point near a stiff base explains anything with a huge force).
+  double max_force_n = 1000.0;      // N, > 0
+  int max_level = 2;                // deepest branch level a rope is tried on (>= 0)
   double anchor_distance_m = 20.0;  // m: the replayed rope's anchor, along the force (> 0)
   double hold_fraction = 0.95;  // the hold starts when the most-moved marker has this share (0, 1]
 

@@ -84,10 +84,11 @@ std::string RunIdentifyStage(const StageContext& context) {
       identification::MaterialsFromIdentification(result, "track/trajectories.csv");
   identification::WriteMaterialsJson(materials, context.out_dir / "materials.json");
   WritePlacements(placed, held_out, context.out_dir / "placements.json");
-  return fmt::format("{} links, {} measured, {} branches; release at {:.2f} s; markers {} held "
-                     "out",
-                     materials.links.size(), materials.ranges.measured, materials.branches.size(),
-                     materials.release_time_s, fmt::join(held_out, ", "));
+  return fmt::format(
+      "{} links, {} measured, {} branches; release at {:.2f} s; markers {} held "
+      "out",
+      materials.links.size(), materials.ranges.measured, materials.branches.size(),
+      materials.release_time_s, fmt::join(held_out, ", "));
 }
 
 }  // namespace simtree::pipeline::detail

@@ -62,8 +62,7 @@ std::string RunRegisterStage(const StageContext& context) {
   WriteFileAtomically(dir / "pairs.md", registration::PairsMarkdown(result));
   WritePng(registration::BeforeAfterPicture(views, result), dir / "before_after.png");
   if (!result.merged.points_.empty()) WritePointCloud(result.merged, dir / "merged.ply");
-  WriteFileAtomically(dir / "pull_camera.json",
-                      registration::ExtraViewToJson(pull).dump(1) + "\n");
+  WriteFileAtomically(dir / "pull_camera.json", registration::ExtraViewToJson(pull).dump(1) + "\n");
   if (result.RegisteredCount() < 2 && result.views.size() >= 2) {
     throw InputError(context.capture_dir.string(), "scans/",
                      fmt::format("expected at least two views to register, got {} (see "
@@ -96,9 +95,8 @@ std::string RunReconstructStage(const StageContext& context) {
   WriteMesh(BuildTubeMesh(tree), dir / "static.ply", mesh);
   double wood = 0.0;
   for (const Branch& b : tree.branches) wood += b.Length();
-  const std::string summary =
-      fmt::format("{} branches, {:.2f} m of wood from {} points", tree.size(), wood,
-                  result.input_points);
+  const std::string summary = fmt::format("{} branches, {:.2f} m of wood from {} points",
+                                          tree.size(), wood, result.input_points);
   reconstruction::ReconstructionPlotOptions plot;
   plot.title = "simtree run: reconstruct";
   plot.caption = {summary};

@@ -41,8 +41,7 @@ ojson Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
 // simulation.json, as `simtree simulate` writes it, plus the pull fit.
 ojson SimulationJson(const Tree& tree, const dynamics::SimulationOptions& sim,
-                     const dynamics::SimulationResult& result, const PullFit& fit,
-                     size_t markers) {
+                     const dynamics::SimulationResult& result, const PullFit& fit, size_t markers) {
   const dynamics::Rope& r = sim.pull->rope;
   ojson doc;
   doc["format"] = "simtree.simulation";
@@ -58,11 +57,16 @@ ojson SimulationJson(const Tree& tree, const dynamics::SimulationOptions& sim,
   doc["base_excitation"] = sim.dynamics.base_excitation;
   doc["transfer_loads"] = sim.dynamics.transfer_loads;
   doc["gravity"] = sim.dynamics.gravity;
-  doc["pull"] = {{"branch", r.branch},          {"arc_length_m", r.arc_length},
-                 {"point", Vec(result.pull_point)}, {"anchor", Vec(r.anchor)},
-                 {"mode", ToString(r.mode)},    {"force_n", r.force_n},
-                 {"displacement_m", 0.0},       {"tension_n", result.pull_tension_n},
-                 {"hold_s", sim.pull->hold_s},  {"release_s", sim.pull->release_s}};
+  doc["pull"] = {{"branch", r.branch},
+                 {"arc_length_m", r.arc_length},
+                 {"point", Vec(result.pull_point)},
+                 {"anchor", Vec(r.anchor)},
+                 {"mode", ToString(r.mode)},
+                 {"force_n", r.force_n},
+                 {"displacement_m", 0.0},
+                 {"tension_n", result.pull_tension_n},
+                 {"hold_s", sim.pull->hold_s},
+                 {"release_s", sim.pull->release_s}};
   doc["pull_fit"] = {{"force", Vec(fit.force)},
                      {"residual_rms_m", fit.residual_rms_m},
                      {"observed_rms_m", fit.observed_rms_m},
@@ -70,8 +74,7 @@ ojson SimulationJson(const Tree& tree, const dynamics::SimulationOptions& sim,
                      {"candidates", fit.candidates}};
   doc["wind"] = nullptr;
   doc["markers"] = markers;
-  doc["outputs"] = {"nodes.bin", "markers.csv", "markers.json", "animation.glb",
-                    "simulation.json"};
+  doc["outputs"] = {"nodes.bin", "markers.csv", "markers.json", "animation.glb", "simulation.json"};
   return doc;
 }
 
@@ -161,8 +164,7 @@ std::string RunReportStage(const StageContext& context) {
   options.allow_missing_javascript = context.options.allow_missing_javascript;
   const report::ReportResult result = report::WriteReport(context.result_dir, options);
   for (const std::string& note : result.notes) spdlog::debug("report: {}", note);
-  return fmt::format("report.html, {:.1f} MB ({} notes)", result.bytes / 1e6,
-                     result.notes.size());
+  return fmt::format("report.html, {:.1f} MB ({} notes)", result.bytes / 1e6, result.notes.size());
 }
 
 }  // namespace simtree::pipeline::detail
