@@ -76,10 +76,11 @@ std::vector<std::pair<int, double>> Candidates(const Tree& tree, const PullFitOp
   return out;
 }
 
-// The markers' static displacement (3 rows each) per newton along x, y and z at the point.
+// The static displacement (3 rows each) per newton along x, y and z at the rope point: of every
+// marker, then of the rope point itself (the last 3 rows).
 Eigen::MatrixXd Compliance(dynamics::TreeDynamics& sim, const std::vector<Observation>& obs,
                            int branch, double arc_length) {
-  Eigen::MatrixXd c(3 * obs.size(), 3);
+  Eigen::MatrixXd c(3 * obs.size() + 3, 3);
   const Eigen::Vector3d point = sim.tree().branches[branch].PointAt(arc_length);
   for (int axis = 0; axis < 3; ++axis) {
     sim.Reset();
@@ -94,6 +95,7 @@ Eigen::MatrixXd Compliance(dynamics::TreeDynamics& sim, const std::vector<Observ
       const Eigen::Vector3d rest = sim.tree().branches[obs[i].branch].PointAt(obs[i].arc_length);
       c.block<3, 1>(3 * i, axis) = sim.PointPosition(obs[i].branch, obs[i].arc_length) - rest;
     }
+    c.block<3, 1>(3 * obs.size(), axis) = sim.PointPosition(branch, arc_length) - point;
   }
   return c;
 }
@@ -130,6 +132,8 @@ void PullFitOptions::Validate() const {
   check(max_arc_share > min_arc_share && max_arc_share <= 1, "max_arc_share",
         "expected a share in (min_arc_share, 1]");
   check(max_force_n > 0 && std::isfinite(max_force_n), "max_force_n", "expected newtons > 0");
+  check(max_point_displacement_factor > 0 && std::isfinite(max_point_displacement_factor),
+        "max_point_displacement_factor", "expected a factor > 0");
   check(anchor_distance_m > 0 && std::isfinite(anchor_distance_m), "anchor_distance_m",
         "expected metres > 0");
   check(hold_fraction > 0 && hold_fraction <= 1, "hold_fraction", "expected a share in (0, 1]");
@@ -171,11 +175,18 @@ PullFit FitPull(const Tree& tree, const Trajectories& tracks,
   PullFit best;
   double best_residual = std::numeric_limits<double>::infinity();
   const auto candidates = Candidates(tree, options);
+  double largest = 0.0;
+  for (const Observation& o : obs) largest = std::max(largest, o.held.norm());
+  const auto rows = static_cast<Eigen::Index>(d.size());
   for (const auto& [branch, arc] : candidates) {
-    const Eigen::MatrixXd c = Compliance(sim, obs, branch, arc);
+    const Eigen::MatrixXd all = Compliance(sim, obs, branch, arc);
+    const Eigen::MatrixXd c = all.topRows(rows);
     const Eigen::Vector3d force = c.colPivHouseholderQr().solve(d);
     const double residual = (c * force - d).norm();
-    if (!force.allFinite() || force.norm() > options.max_force_n || residual >= best_residual) {
+    const double point_moves = (all.bottomRows(3) * force).norm();
+    if (!force.allFinite() || force.norm() > options.max_force_n ||
+        point_moves > options.max_point_displacement_factor * largest ||
+        residual >= best_residual) {
       continue;
     }
     best_residual = residual;
@@ -186,8 +197,9 @@ PullFit FitPull(const Tree& tree, const Trajectories& tracks,
   if (!std::isfinite(best_residual)) {
     throw InputError("simready tree", "",
                      fmt::format("no branch point explains the held displacements with a force "
-                                 "of at most {} N",
-                                 options.max_force_n));
+                                 "of at most {} N moving its point at most {} times the markers' "
+                                 "largest displacement",
+                                 options.max_force_n, options.max_point_displacement_factor));
   }
   best.point = tree.branches[best.branch].PointAt(best.arc_length);
   best.residual_rms_m = best_residual / std::sqrt(static_cast<double>(obs.size()));

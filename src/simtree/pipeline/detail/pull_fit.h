@@ -24,8 +24,11 @@ struct PullFitOptions {
   double max_arc_share = 0.95;    // ... to this share (> min_arc_share, <= 1)
   // A rope point needing more than this to explain the displacements is no pull a person makes
   // (a point near a stiff base explains anything with a huge force).
-  double max_force_n = 1000.0;      // N, > 0
-  int max_level = 2;                // deepest branch level a rope is tried on (>= 0)
+  double max_force_n = 1000.0;  // N, > 0
+  // Nor one whose own point would move more than this many times the largest held displacement
+  // of a marker (a thin twig pulled hard, its motion seen by no marker).
+  double max_point_displacement_factor = 1.5;  // > 0
+  int max_level = 2;                           // deepest branch level a rope is tried on (>= 0)
   double anchor_distance_m = 20.0;  // m: the replayed rope's anchor, along the force (> 0)
   double hold_fraction = 0.95;  // the hold starts when the most-moved marker has this share (0, 1]
 
