@@ -13,6 +13,8 @@
 
 #include <gtest/gtest.h>
 
+#include "simtree/core/error.h"
+
 namespace simtree::test {
 
 // ../shared/data (set by CMake). Fails the test loudly if the folder is not there.
@@ -31,6 +33,17 @@ inline std::filesystem::path TempDir() {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+// The message of the exception of type E that `f` throws, or "" when it throws none.
+template <typename E = Error, typename F>
+std::string ErrorOf(F&& f) {
+  try {
+    f();
+  } catch (const E& e) {
+    return e.what();
+  }
+  return "";
 }
 
 inline std::string ReadText(const std::filesystem::path& path) {

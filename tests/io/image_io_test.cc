@@ -11,15 +11,7 @@ namespace {
 
 using ::testing::HasSubstr;
 
-template <typename F>
-std::string ErrorOf(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::ErrorOf;
 
 RgbImage Gradient(int w, int h) {
   RgbImage image(w, h);

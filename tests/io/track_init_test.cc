@@ -43,16 +43,18 @@ TEST(TrackInit, RoundTripKeepsIdsFrameAndPixels) {
 TEST(TrackInit, BadFilesNameTheFieldAndWhatWasExpected) {
   const std::string head = R"({"format": "simtree.track_init", "version": 1, "frame": 0, )";
   EXPECT_THAT(ReadError(head + R"("markers": []})"), HasSubstr("markers: expected at least one"));
-  EXPECT_THAT(ReadError(head + R"("markers": [{"id": 1, "pixel": [1, 2]}, {"id": 1, "pixel": [3, 4]}]})"),
-              HasSubstr("markers[1].id: marker id 1 appears twice"));
+  EXPECT_THAT(
+      ReadError(head + R"("markers": [{"id": 1, "pixel": [1, 2]}, {"id": 1, "pixel": [3, 4]}]})"),
+      HasSubstr("markers[1].id: marker id 1 appears twice"));
   EXPECT_THAT(ReadError(head + R"("markers": [{"id": 1, "pixel": [1]}]})"),
               HasSubstr("markers[0].pixel: expected 2 numbers"));
   EXPECT_THAT(ReadError(head + R"("markers": [{"id": 1, "pixel": [-4, 2]}]})"),
               HasSubstr("markers[0].pixel: expected a pixel inside the image"));
   EXPECT_THAT(ReadError(head + R"("markers": [{"id": -2, "pixel": [4, 2]}]})"),
               HasSubstr("markers[0].id: expected an id >= 0"));
-  EXPECT_THAT(ReadError(R"({"format": "simtree.markers", "version": 1, "frame": 0, "markers": []})"),
-              HasSubstr("simtree.track_init"));
+  EXPECT_THAT(
+      ReadError(R"({"format": "simtree.markers", "version": 1, "frame": 0, "markers": []})"),
+      HasSubstr("simtree.track_init"));
   EXPECT_THAT(ReadError(head), HasSubstr("init.json"));  // truncated
   EXPECT_FALSE(ReadError(head + R"("markers": [{"id": 1, "pixel": [4, 2]}]})").size());
 }

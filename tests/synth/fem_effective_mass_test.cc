@@ -106,7 +106,8 @@ TEST(FemEffectiveMass, ModesOfAnotherModelAreAnInputError) {
   const FemModel large(test::YTree(), wood);
   ASSERT_NE(small.dof_count(), large.dof_count());
   const ModalBasis modes = ComputeModes(small, {.count = 4});
-  const std::string error = test::InputErrorOf([&] { ComputeEffectiveMasses(large, modes); });
+  const std::string error =
+      test::ErrorOf<InputError>([&] { ComputeEffectiveMasses(large, modes); });
   EXPECT_THAT(error, HasSubstr("shapes"));
   EXPECT_THAT(error, HasSubstr("degrees of freedom"));
   EXPECT_EQ(ComputeEffectiveMasses(small, modes).count(), 4);

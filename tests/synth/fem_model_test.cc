@@ -208,64 +208,65 @@ TEST(FemModel, PoseMovesTreeNodesAndKeepsJointsTogether) {
 
 TEST(FemModel, BadInputIsAnInputError) {
   const WoodProperties wood = test::TestWood();
-  EXPECT_THAT(test::InputErrorOf([&] { FemModel(Tree{}, wood); }),
+  EXPECT_THAT(test::ErrorOf<InputError>([&] { FemModel(Tree{}, wood); }),
               HasSubstr("at least one branch"));
   Tree tree = test::SmallTree();
   tree.branches[2].nodes[1].radius = 0.0;
-  EXPECT_THAT(test::InputErrorOf([&] { FemModel(tree, wood); }),
+  EXPECT_THAT(test::ErrorOf<InputError>([&] { FemModel(tree, wood); }),
               HasSubstr("branches[2].nodes[1].radius"));
   tree = test::SmallTree();
   tree.branches[1].nodes[2].position.x() = kNaN;
-  EXPECT_THAT(test::InputErrorOf([&] { FemModel(tree, wood); }), HasSubstr("position"));
+  EXPECT_THAT(test::ErrorOf<InputError>([&] { FemModel(tree, wood); }), HasSubstr("position"));
   WoodProperties bad = wood;
   bad.youngs_modulus_pa = kNaN;
-  EXPECT_THAT(test::InputErrorOf([&] { FemModel(test::SmallTree(), bad); }),
+  EXPECT_THAT(test::ErrorOf<InputError>([&] { FemModel(test::SmallTree(), bad); }),
               HasSubstr("youngs_modulus_pa"));
   bad = wood;
   bad.rayleigh_beta = -1e-3;
-  EXPECT_THAT(test::InputErrorOf([&] { FemModel(test::SmallTree(), bad); }),
+  EXPECT_THAT(test::ErrorOf<InputError>([&] { FemModel(test::SmallTree(), bad); }),
               HasSubstr("rayleigh_beta"));
-  EXPECT_THAT(
-      test::InputErrorOf([&] { FemModel(test::SmallTree(), wood, {.max_element_length_m = 0}); }),
-      HasSubstr("max_element_length_m"));
+  EXPECT_THAT(test::ErrorOf<InputError>(
+                  [&] { FemModel(test::SmallTree(), wood, {.max_element_length_m = 0}); }),
+              HasSubstr("max_element_length_m"));
   for (double ratio : {-1.0, kNaN}) {
-    EXPECT_THAT(test::InputErrorOf([&] {
+    EXPECT_THAT(test::ErrorOf<InputError>([&] {
                   FemModel(test::SmallTree(), wood, {.root_plate_stiffness_ratio = ratio});
                 }),
                 HasSubstr("root_plate_stiffness_ratio"));
   }
   // A branch of coincident nodes only has nothing to bend.
   Tree point = test::Cantilever({0, 0, 0}, {0, 0, 1}, 0.0, 3, [](double) { return 0.01; });
-  EXPECT_THAT(test::InputErrorOf([&] { FemModel(point, wood); }), HasSubstr("non-zero length"));
+  EXPECT_THAT(test::ErrorOf<InputError>([&] { FemModel(point, wood); }),
+              HasSubstr("non-zero length"));
 
   const FemModel model(test::SmallTree(), wood);
-  EXPECT_THAT(test::InputErrorOf([&] {
+  EXPECT_THAT(test::ErrorOf<InputError>([&] {
                 model.PointLoad(7, 0.1, {1, 0, 0});
               }),
               HasSubstr("branch: expected a branch id in [0, 3], got 7"));
-  EXPECT_THAT(test::InputErrorOf([&] {
+  EXPECT_THAT(test::ErrorOf<InputError>([&] {
                 model.PointLoad(-1, 0.1, {1, 0, 0});
               }),
               HasSubstr("branch"));
-  EXPECT_THAT(test::InputErrorOf([&] {
+  EXPECT_THAT(test::ErrorOf<InputError>([&] {
                 model.PointLoad(1, 5.0, {1, 0, 0});
               }),
               HasSubstr("arc_length"));
-  EXPECT_THAT(test::InputErrorOf([&] {
+  EXPECT_THAT(test::ErrorOf<InputError>([&] {
                 model.PointLoad(1, kNaN, {1, 0, 0});
               }),
               HasSubstr("arc_length"));
-  EXPECT_THAT(test::InputErrorOf([&] {
+  EXPECT_THAT(test::ErrorOf<InputError>([&] {
                 model.PointLoad(1, 0.1, {kNaN, 0, 0});
               }),
               HasSubstr("finite"));
-  EXPECT_THAT(test::InputErrorOf([&] { model.Pose(Eigen::VectorXd::Zero(5)); }),
+  EXPECT_THAT(test::ErrorOf<InputError>([&] { model.Pose(Eigen::VectorXd::Zero(5)); }),
               HasSubstr("expected"));
-  EXPECT_THAT(test::InputErrorOf([&] { SolveStatic(model, Eigen::VectorXd::Zero(3)); }),
+  EXPECT_THAT(test::ErrorOf<InputError>([&] { SolveStatic(model, Eigen::VectorXd::Zero(3)); }),
               HasSubstr("force"));
   Eigen::VectorXd f = Eigen::VectorXd::Zero(model.dof_count());
   f[4] = kNaN;
-  EXPECT_THAT(test::InputErrorOf([&] { SolveStatic(model, f); }), HasSubstr("NaN"));
+  EXPECT_THAT(test::ErrorOf<InputError>([&] { SolveStatic(model, f); }), HasSubstr("NaN"));
 }
 
 TEST(FemModel, MergesCoincidentNodes) {

@@ -238,32 +238,32 @@ TEST(FemResponse, BadInputIsAnInputError) {
   PullLoad pull = TipPull(tree, 1, 10.0);
   const std::vector<double> frames = {0.0, 1.0};
   pull.branch = 9;
-  EXPECT_THAT(test::InputErrorOf([&] { IntegratePull(model, pull, frames, {}, ignore); }),
+  EXPECT_THAT(test::ErrorOf<InputError>([&] { IntegratePull(model, pull, frames, {}, ignore); }),
               HasSubstr("branch"));
   pull = TipPull(tree, 1, 10.0);
   pull.anchor = pull.attach_point;
-  EXPECT_THAT(test::InputErrorOf([&] { IntegratePull(model, pull, frames, {}, ignore); }),
+  EXPECT_THAT(test::ErrorOf<InputError>([&] { IntegratePull(model, pull, frames, {}, ignore); }),
               HasSubstr("anchor"));
   pull = TipPull(tree, 1, std::numeric_limits<double>::quiet_NaN());
-  EXPECT_THAT(test::InputErrorOf([&] { IntegratePull(model, pull, frames, {}, ignore); }),
+  EXPECT_THAT(test::ErrorOf<InputError>([&] { IntegratePull(model, pull, frames, {}, ignore); }),
               HasSubstr("force_n"));
   pull = TipPull(tree, 1, 10.0);
   pull.release_s = 1.0;  // before the hold starts
-  EXPECT_THAT(test::InputErrorOf([&] { IntegratePull(model, pull, frames, {}, ignore); }),
+  EXPECT_THAT(test::ErrorOf<InputError>([&] { IntegratePull(model, pull, frames, {}, ignore); }),
               HasSubstr("release_s"));
   pull = TipPull(tree, 1, 10.0);
   const std::vector<double> backwards = {1.0, 0.5};
-  EXPECT_THAT(test::InputErrorOf([&] { IntegratePull(model, pull, backwards, {}, ignore); }),
+  EXPECT_THAT(test::ErrorOf<InputError>([&] { IntegratePull(model, pull, backwards, {}, ignore); }),
               HasSubstr("ascending"));
-  EXPECT_THAT(test::InputErrorOf(
+  EXPECT_THAT(test::ErrorOf<InputError>(
                   [&] { IntegratePull(model, pull, frames, {.max_time_step_s = 0}, ignore); }),
               HasSubstr("max_time_step_s"));
   FemState start = RestState(model);
   start.x.resize(4);
-  EXPECT_THAT(
-      test::InputErrorOf([&] { IntegrateNewmark(model, start, FemLoad{}, frames, {}, ignore); }),
-      HasSubstr("start.x"));
-  EXPECT_THAT(test::InputErrorOf([&] {
+  EXPECT_THAT(test::ErrorOf<InputError>(
+                  [&] { IntegrateNewmark(model, start, FemLoad{}, frames, {}, ignore); }),
+              HasSubstr("start.x"));
+  EXPECT_THAT(test::ErrorOf<InputError>([&] {
                 IntegrateNewmark(model, ModalBasis{}, RestState(model), FemLoad{}, frames, {},
                                  ignore);
               }),

@@ -10,6 +10,7 @@
 #include "simtree/core/tree.h"
 #include "simtree/core/units.h"
 #include "simtree/synth/detail/wood.h"
+#include "test_util.h"
 
 namespace simtree::test {
 
@@ -77,16 +78,5 @@ inline double CantileverFrequencyHz(double beta_l, const synth::WoodProperties& 
 }
 inline constexpr double kBetaL1 = 1.8751040687;
 inline constexpr double kBetaL2 = 4.6940911330;
-
-// The message of the InputError `f` throws, or "" when it throws none.
-template <typename F>
-std::string InputErrorOf(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 }  // namespace simtree::test

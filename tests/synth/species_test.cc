@@ -11,18 +11,6 @@
 namespace simtree::synth {
 namespace {
 
-// The InputError message of `f`, or a failure when it does not throw one.
-template <typename F>
-std::string ErrorOf(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no InputError";
-  return "";
-}
-
 nlohmann::json Parse(const std::string& text) { return nlohmann::json::parse(text); }
 
 TEST(Species, PresetsAreValidAndNamed) {
@@ -46,7 +34,8 @@ TEST(Species, PresetsAreValidAndNamed) {
   EXPECT_EQ(SpeciesPreset("acer_rubrum").phyllotaxis, Phyllotaxis::kOpposite);
   EXPECT_EQ(SpeciesPreset("magnolia").phyllotaxis, Phyllotaxis::kAlternate);
   EXPECT_DOUBLE_EQ(SpeciesPreset("magnolia").divergence_angle_deg, 137.5);
-  EXPECT_NE(ErrorOf([] { SpeciesPreset("oak"); }).find("acer_rubrum"), std::string::npos);
+  EXPECT_NE(test::ErrorOf<InputError>([] { SpeciesPreset("oak"); }).find("acer_rubrum"),
+            std::string::npos);
 }
 
 // Paper Table IV: each species' natural frequency range and its damping ratio range. The
@@ -95,7 +84,7 @@ TEST(Species, JsonRoundTripIsExact) {
 TEST(Species, CustomFileChangesFieldsOverABase) {
   const SpeciesParams base = SpeciesPreset("magnolia");
   // The strict reader names the unknown nested field.
-  EXPECT_NE(ErrorOf([] {
+  EXPECT_NE(test::ErrorOf<InputError>([] {
               SpeciesFromJson(Parse(R"({"base": "magnolia",
                   "trunk": {"shape": {"lean_deg_is_not_here": 0}}})"),
                               "x.json");
@@ -132,7 +121,9 @@ TEST(Species, WholeFilesFromBeforeYoungWoodStillLoad) {
   EXPECT_EQ(SpeciesToJson(q).dump(), SpeciesToJson(SpeciesPreset("acer_rubrum")).dump());
   // Given, they are still read strictly.
   doc["wood"]["young_wood_exponent"] = -1.0;
-  EXPECT_NE(ErrorOf([&] { SpeciesFromJson(doc, "old.json"); }).find("wood.young_wood_exponent"),
+  EXPECT_NE(test::ErrorOf<InputError>([&] {
+              SpeciesFromJson(doc, "old.json");
+            }).find("wood.young_wood_exponent"),
             std::string::npos);
 }
 
@@ -148,7 +139,9 @@ TEST(Species, WholeFilesFromBeforeTheRootPlateAreClamped) {
   EXPECT_EQ(SpeciesFemOptions(over).root_plate_stiffness_ratio,
             SpeciesPreset("acer_palmatum").root_plate_stiffness_ratio);
   doc["root_plate_stiffness_ratio"] = -1.0;
-  EXPECT_NE(ErrorOf([&] { SpeciesFromJson(doc, "old.json"); }).find("root_plate_stiffness_ratio"),
+  EXPECT_NE(test::ErrorOf<InputError>([&] {
+              SpeciesFromJson(doc, "old.json");
+            }).find("root_plate_stiffness_ratio"),
             std::string::npos);
 }
 
@@ -157,7 +150,7 @@ TEST(Species, StrictErrorsNameTheField) {
   auto with = [&](const std::function<void(nlohmann::json&)>& edit) {
     nlohmann::json doc = Parse(preset);
     edit(doc);
-    return ErrorOf([&] { SpeciesFromJson(doc, "custom.json"); });
+    return test::ErrorOf<InputError>([&] { SpeciesFromJson(doc, "custom.json"); });
   };
   auto expect_names = [](const std::string& message, const std::string& field) {
     EXPECT_NE(message.find("custom.json"), std::string::npos) << message;
@@ -201,9 +194,10 @@ TEST(Species, StrictErrorsNameTheField) {
   expect_names(with([](nlohmann::json& d) { d["base"] = "oak"; }), "base: unknown preset");
   expect_names(with([](nlohmann::json& d) { d["levels"][1] = 3; }),
                "levels[1]: expected an object");
-  EXPECT_NE(
-      ErrorOf([] { SpeciesFromJson(Parse("[1, 2]"), "custom.json"); }).find("expected an object"),
-      std::string::npos);
+  EXPECT_NE(test::ErrorOf<InputError>([] {
+              SpeciesFromJson(Parse("[1, 2]"), "custom.json");
+            }).find("expected an object"),
+            std::string::npos);
 }
 
 TEST(Species, FilesThatCannotBeReadAreRefused) {
@@ -212,7 +206,7 @@ TEST(Species, FilesThatCannotBeReadAreRefused) {
   test::WriteText(dir / "empty.json", "");
   EXPECT_THROW(ReadSpeciesJson(dir / "empty.json"), InputError);
   test::WriteText(dir / "broken.json", "{\"base\": \"magnolia\",");
-  EXPECT_NE(ErrorOf([&] { ReadSpeciesJson(dir / "broken.json"); }).find("line 1"),
+  EXPECT_NE(test::ErrorOf<InputError>([&] { ReadSpeciesJson(dir / "broken.json"); }).find("line 1"),
             std::string::npos);
   // Writing refuses an invalid struct and leaves nothing behind.
   SpeciesParams p = SpeciesPreset("magnolia");

@@ -73,28 +73,6 @@ class JsonNode {
   std::string at_;
 };
 
-// The older reader, still used by a few files; new code reads through JsonNode.
-class JsonReader {
- public:
-  explicit JsonReader(std::string source) : source_(std::move(source)) {}
-  const std::string& source() const { return source_; }
-
-  // The member `key` of object `obj` found at path `at`; throws when it is missing.
-  const nlohmann::json& Field(const nlohmann::json& obj, const std::string& key,
-                              const std::string& at) const;
-  bool Has(const nlohmann::json& obj, const std::string& key) const;
-  double Number(const nlohmann::json& value, const std::string& at) const;
-  int Integer(const nlohmann::json& value, const std::string& at) const;
-  std::string String(const nlohmann::json& value, const std::string& at) const;
-  const nlohmann::json& Array(const nlohmann::json& value, const std::string& at) const;
-  const nlohmann::json& Object(const nlohmann::json& value, const std::string& at) const;
-  Eigen::Vector3d Vector3(const nlohmann::json& value, const std::string& at) const;
-  [[noreturn]] void Fail(const std::string& at, const std::string& message) const;
-
- private:
-  std::string source_;
-};
-
 // The document of a JSON file, parsed (errors name the file, line and column).
 struct JsonDocument {
   nlohmann::json value;

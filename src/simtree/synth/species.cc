@@ -202,46 +202,47 @@ class JsonWriter {
 class JsonFieldReader {
  public:
   JsonFieldReader(const nlohmann::json& doc, std::string source)
-      : reader_(std::move(source)), node_(&doc) {}
+      : source_(std::move(source)), node_(&doc) {}
 
   void Number(const char* key, double& value, double, double) {
-    value = reader_.Number(Take(key), path_.At(key));
+    value = Node(Take(key), path_.At(key)).Number();
   }
   void Integer(const char* key, int& value, int, int) {
-    value = reader_.Integer(Take(key), path_.At(key));
+    value = Node(Take(key), path_.At(key)).Integer();
   }
   void Text(const char* key, std::string& value) {
-    value = reader_.String(Take(key), path_.At(key));
+    value = Node(Take(key), path_.At(key)).String();
   }
   void Phyllotaxis(const char* key, synth::Phyllotaxis& value) {
-    const std::string name = reader_.String(Take(key), path_.At(key));
+    const std::string name = Node(Take(key), path_.At(key)).String();
     if (name == ToString(Phyllotaxis::kOpposite)) {
       value = Phyllotaxis::kOpposite;
     } else if (name == ToString(Phyllotaxis::kAlternate)) {
       value = Phyllotaxis::kAlternate;
     } else {
-      reader_.Fail(path_.At(key),
-                   fmt::format("expected \"opposite\" or \"alternate\", got \"{}\"", name));
+      throw InputError(source_, path_.At(key),
+                       fmt::format("expected \"opposite\" or \"alternate\", got \"{}\"", name));
     }
   }
   template <typename F>
   void Group(const char* key, F&& f) {
-    const nlohmann::json& group = reader_.Object(Take(key), path_.At(key));
+    const nlohmann::json& group = Node(Take(key), path_.At(key)).ExpectObject().json();
     Within(group, path_.At(key), f);
   }
   template <typename Container, typename F>
   void List(const char* key, Container& items, int lo, int hi, F&& f) {
     const std::string at = path_.At(key);
-    const nlohmann::json& list = reader_.Array(Take(key), at);
+    const nlohmann::json& list = Node(Take(key), at).ExpectArray().json();
     if (static_cast<int>(list.size()) < lo || static_cast<int>(list.size()) > hi) {
-      reader_.Fail(at, lo == hi
+      throw InputError(source_, at,
+                       lo == hi
                            ? fmt::format("expected {} entries, got {}", lo, list.size())
                            : fmt::format("expected {} to {} entries, got {}", lo, hi, list.size()));
     }
     if constexpr (requires { items.resize(size_t{}); }) items.resize(list.size());
     for (size_t i = 0; i < list.size(); ++i) {
       const std::string element_at = Element(at, i);
-      Within(reader_.Object(list[i], element_at), element_at, [&] { f(items[i]); });
+      Within(Node(list[i], element_at).ExpectObject().json(), element_at, [&] { f(items[i]); });
     }
   }
   // Call after visiting the top level: fails on a field no visitor took.
@@ -250,7 +251,7 @@ class JsonFieldReader {
  private:
   const nlohmann::json& Take(const char* key) {
     taken_.insert(path_.At(key));
-    return reader_.Field(*node_, key, path_.prefix());
+    return Node(*node_, path_.prefix()).Field(key).json();
   }
   template <typename F>
   void Within(const nlohmann::json& object, const std::string& at, F&& f) {
@@ -262,11 +263,16 @@ class JsonFieldReader {
   }
   void CheckAllTaken(const nlohmann::json& object, const std::string& at) {
     for (const auto& [key, value] : object.items()) {
-      if (!taken_.contains(Member(at, key))) reader_.Fail(Member(at, key), "unknown field");
+      if (!taken_.contains(Member(at, key)))
+        throw InputError(source_, Member(at, key), "unknown field");
     }
   }
 
-  JsonReader reader_;
+  JsonNode Node(const nlohmann::json& value, const std::string& at) const {
+    return JsonNode(value, source_, at);
+  }
+
+  std::string source_;
   const nlohmann::json* node_;
   PathTracker path_;
   std::set<std::string> taken_;
@@ -544,14 +550,13 @@ nlohmann::ordered_json SpeciesToJson(const SpeciesParams& params) {
 }
 
 SpeciesParams SpeciesFromJson(const nlohmann::json& doc, const std::string& source) {
-  JsonReader reader(source);
-  reader.Object(doc, "");
+  const JsonNode root = JsonNode(doc, source).ExpectObject();
   nlohmann::json full = doc;
   if (doc.contains("base")) {
-    const std::string base = reader.String(doc["base"], "base");
+    const std::string base = root.String("base");
     const auto names = SpeciesPresetNames();
     if (std::find(names.begin(), names.end(), base) == names.end()) {
-      reader.Fail("base", fmt::format("unknown preset \"{}\"; expected one of {}", base,
+      root.FailAt("base", fmt::format("unknown preset \"{}\"; expected one of {}", base,
                                       fmt::join(names, ", ")));
     }
     full = nlohmann::json::parse(SpeciesToJson(SpeciesPreset(base)).dump());
@@ -559,13 +564,12 @@ SpeciesParams SpeciesFromJson(const nlohmann::json& doc, const std::string& sour
     patch.erase("base");
     MergeInto(full, patch);
   }
-  if (full.contains("format") &&
-      reader.String(full["format"], "format") != std::string(kSpeciesFormat)) {
-    reader.Fail("format", fmt::format("expected \"{}\"", kSpeciesFormat));
+  const JsonNode merged(full, source);
+  if (full.contains("format") && merged.String("format") != std::string(kSpeciesFormat)) {
+    merged.FailAt("format", fmt::format("expected \"{}\"", kSpeciesFormat));
   }
-  if (full.contains("version") &&
-      reader.Integer(full["version"], "version") != kSpeciesFormatVersion) {
-    reader.Fail("version", fmt::format("expected {}", kSpeciesFormatVersion));
+  if (full.contains("version") && merged.Integer("version") != kSpeciesFormatVersion) {
+    merged.FailAt("version", fmt::format("expected {}", kSpeciesFormatVersion));
   }
   full.erase("format");
   full.erase("version");
