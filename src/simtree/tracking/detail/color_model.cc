@@ -129,9 +129,9 @@ TapeColorModel FitColorModel(const TapeColorModel& prior, const RgbImage& image,
       for (int x = std::max(0, u0 - radius); x <= std::min(image.width - 1, u0 + radius); ++x) {
         float h, s, v;
         RgbToHsv(image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2), &h, &s, &v);
-        // Tape-like: a loose version of the prior (wider hue, lower saturation).
-        if (v < prior.min_value || s < 0.8 * prior.min_saturation) continue;
-        if (HueDistance(h, prior.hue_deg) > 1.5 * prior.hue_tolerance_deg) continue;
+        // Tape by the prior: the window also holds bark, which may be reddish.
+        if (v < prior.min_value || s < prior.min_saturation) continue;
+        if (HueDistance(h, prior.hue_deg) > prior.hue_tolerance_deg) continue;
         hues.push_back(h);
         sats.push_back(s);
         values.push_back(v);
@@ -145,8 +145,8 @@ TapeColorModel FitColorModel(const TapeColorModel& prior, const RgbImage& image,
   std::vector<double> spread;
   spread.reserve(hues.size());
   for (double h : hues) spread.push_back(HueDistance(h, model.hue_deg));
-  model.hue_tolerance_deg = std::clamp(1.5 * Quantile(spread, 0.95), 12.0, 30.0);
-  model.min_saturation = std::clamp(0.75 * Quantile(sats, 0.1), 0.3, prior.min_saturation);
+  model.hue_tolerance_deg = std::clamp(1.5 * Quantile(spread, 0.95), 12.0, prior.hue_tolerance_deg);
+  model.min_saturation = std::clamp(0.6 * Quantile(sats, 0.1), prior.min_saturation, 0.6);
   model.full_saturation = std::clamp(Quantile(sats, 0.5), model.min_saturation + 0.05, 0.95);
   model.min_value = std::clamp(0.5 * Quantile(values, 0.1), 12.0, prior.min_value);
   return model;
