@@ -13,6 +13,7 @@
 #include "simtree/tracking/detail/frame_loader.h"
 #include "simtree/tracking/detail/marker_tracker.h"
 #include "simtree/tracking/detail/pull_input.h"
+#include "simtree/tracking/detail/trajectory_smoother.h"
 
 namespace simtree::tracking {
 namespace {
@@ -162,6 +163,13 @@ TrackResult Track(const std::filesystem::path& pull_dir, const TrackInit& init,
     progress.Advance();
   }
   progress.Done();
+  if (options.smooth) {
+    detail::SmoothTrajectories(
+        result.trajectories,
+        detail::SmootherOptions{.process_noise_mps2 = options.process_noise_mps2,
+                                .noise_xy_m = options.measurement_noise_mm / 1000.0,
+                                .noise_z_m = options.measurement_depth_noise_mm / 1000.0});
+  }
   Summarise(&result);
   return result;
 }

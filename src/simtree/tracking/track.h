@@ -52,7 +52,8 @@ struct TrackOptions {
   double search_radius_px = 18.0;
   // Half-size searched around a lost marker's last and rest positions (px, same scaling).
   double reacquire_radius_px = 40.0;
-  // Largest 3D distance between a prediction and a detection assigned to it (mm).
+  // Largest depth difference between a prediction and a detection assigned to it (mm; grown by
+  // three standard deviations of the prediction; three times this for a marker found again).
   double gate_mm = 60.0;
   // Largest image distance between a prediction and a detection assigned to it (px, scaled).
   double gate_px = 14.0;
@@ -68,7 +69,10 @@ struct TrackOptions {
   double process_noise_mps2 = 8.0;
   // Standard deviation of a measured 3D centre across / along the viewing ray (mm).
   double measurement_noise_mm = 2.0;
-  double measurement_depth_noise_mm = 5.0;
+  double measurement_depth_noise_mm = 8.0;
+  // Smooth the measured positions afterwards (forward Kalman and backward Rauch-Tung-Striebel
+  // passes over each run of measured frames; gaps stay gaps).
+  bool smooth = true;
   // Threads loading frames (0: all cores). Tracking itself is sequential (frame after frame).
   int threads = 0;
   // Throws InputError naming the field when an option is out of range.

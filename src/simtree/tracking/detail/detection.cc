@@ -51,7 +51,7 @@ std::vector<double> TapeCoverage(const Blob& blob, const RgbImage& color, BlobDe
 }
 
 double RobustDepth(const DepthImage& depth, double depth_scale_m, const std::vector<int>& pixels,
-                   double edge_m) {
+                   double edge_m, double quantile) {
   const double edge_units = edge_m / depth_scale_m;
   std::vector<double> inner, all;
   for (int i : pixels) {
@@ -63,12 +63,17 @@ double RobustDepth(const DepthImage& depth, double depth_scale_m, const std::vec
   std::vector<double>& use = inner.size() >= 2 ? inner : all;
   if (use.empty()) return 0.0;
   const double first = Median(use);
-  // Drop what is far from the first median (a background pixel seen through a gap), then again.
+  // Drop what is far from the first median (a background pixel seen through a gap), then take
+  // the quantile of the rest.
   std::vector<double> near;
   for (double d : use) {
     if (std::abs(d - first) <= 0.5 * edge_units) near.push_back(d);
   }
-  const double second = near.empty() ? first : Median(near);
+  double second = first;
+  if (!near.empty()) {
+    std::sort(near.begin(), near.end());
+    second = near[std::min(near.size() - 1, static_cast<size_t>(quantile * near.size()))];
+  }
   return second * depth_scale_m;
 }
 
@@ -110,8 +115,9 @@ Detection MeasureBlob(const Blob& blob, const RgbdImage& image, BlobDetector& de
   for (int i : blob.pixels) {
     if (detector.WeightAt(image.color, i) >= kCleanWeight) strong.push_back(i);
   }
-  const double z_surface = RobustDepth(image.depth, k.depth_scale_m,
-                                       strong.size() >= 2 ? strong : blob.pixels, options.edge_m);
+  const double z_surface =
+      RobustDepth(image.depth, k.depth_scale_m, strong.size() >= 2 ? strong : blob.pixels,
+                  options.edge_m, options.depth_quantile);
   if (z_surface > 0.0) {
     det.has_depth = true;
     // The smaller half-length spans the branch: its radius in pixels.

@@ -8,11 +8,12 @@
 // pixel's own extent (1/12 px^2), give the rectangle's axes and, for a uniform rectangle,
 // half-lengths sqrt(3 lambda); the box bounds that rectangle grown by `box_margin_px`.
 //
-// 3D centre: the median depth of the blob's own pixels, after dropping pixels on a depth edge
-// (a 4-neighbour more than `edge_m` away: flying pixels between the tape and what is behind it)
-// and then pixels far from the first median; the branch axis lies behind that visible surface by
-// about 0.85 of the branch radius (the median of sqrt(r^2 - x^2) over a cylinder's width), the
-// radius read from the blob's width across the branch.
+// 3D centre: a low quantile (`depth_quantile`) of the depths of the blob's clean tape pixels,
+// after dropping pixels on a depth edge (a 4-neighbour more than `edge_m` away: flying pixels
+// between the tape and what is behind it) and pixels far from their median: the front of the
+// branch, since a sensor mixes the depth of a tape a few pixels wide with what lies behind it. The
+// branch axis lies one branch radius behind the front (`axis_offset_ratio`), the radius read from
+// the blob's width across the branch. Both were chosen on synth streams (docs/tracking.md).
 
 #include <array>
 #include <vector>
@@ -28,7 +29,8 @@ struct MeasureOptions {
   double edge_m = 0.03;            // depth step that marks a depth edge
   double box_margin_px = 0.0;      // added to each side of the rectangle's box
   double box_scale = 1.0;          // scales the rectangle's half-lengths
-  double axis_offset_ratio = 0.85; // axis behind the visible surface, in branch radii
+  double axis_offset_ratio = 1.0;  // axis behind the measured front, in branch radii
+  double depth_quantile = 0.25;    // quantile of the tape's depths taken as its front
 };
 
 struct Detection {
@@ -55,8 +57,9 @@ Detection MeasureBlob(const Blob& blob, const RgbdImage& image, BlobDetector& de
 // with no tape colour).
 std::vector<double> TapeCoverage(const Blob& blob, const RgbImage& color, BlobDetector& detector);
 
-// Robust depth (m) of `pixels` of `depth`: 0 when none has a usable measurement.
+// Robust depth (m) of `pixels` of `depth`, the `quantile` of their depths once depth edges and
+// outliers are dropped: 0 when none has a usable measurement.
 double RobustDepth(const DepthImage& depth, double depth_scale_m, const std::vector<int>& pixels,
-                   double edge_m);
+                   double edge_m, double quantile = 0.5);
 
 }  // namespace simtree::tracking::detail

@@ -65,35 +65,38 @@ std::vector<SearchWindow> MarkerTracker::Windows() const {
 }
 
 double MarkerTracker::Cost(const Marker& m, const Detection& det) const {
+  // Image distance and depth difference, each against its own gate: the depth of a tape a few
+  // pixels wide is far noisier than its position across the image.
   const bool active = (m.started || first_frame_) && m.coast <= options_.max_coast_frames;
+  const double gate_z = options_.gate_mm / 1000.0;
   if (!m.started || !active) {
     // Found again (or never found yet): near its last pixel or its rest pixel, in the image.
     const double gate = (active ? options_.search_radius_px : options_.reacquire_radius_px) *
                         Scale();
-    double d2 = std::min((det.center - m.pixel).norm(), (det.center - m.rest_pixel).norm());
+    const double d2 = std::min((det.center - m.pixel).norm(), (det.center - m.rest_pixel).norm());
     if (d2 > gate) return kForbidden;
     double cost = (d2 / gate) * (d2 / gate);
     if (m.started && det.has_depth) {
-      const double gate3 = 3.0 * options_.gate_mm / 1000.0;
-      const double d3 = std::min((det.position - m.last_position).norm(),
-                                 (det.position - m.motion.rest()).norm());
-      if (d3 > gate3) return kForbidden;
-      cost += (d3 / gate3) * (d3 / gate3);
+      const double dz = std::min(std::abs(det.position.z() - m.last_position.z()),
+                                 std::abs(det.position.z() - m.motion.rest().z()));
+      if (dz > 3.0 * gate_z) return kForbidden;
+      cost += (dz / (3.0 * gate_z)) * (dz / (3.0 * gate_z));
     }
     return cost;
   }
   const Eigen::Vector3d p = m.motion.position();
   const Eigen::Vector3d sigma = m.motion.position_sigma();
   const double sigma_px = std::max(sigma.x(), sigma.y()) * intrinsics_.fx / std::max(p.z(), 0.1);
-  const double gate2 = options_.gate_px * Scale() + 3.0 * sigma_px;
+  // The gate grows with the prediction's uncertainty while coasting, to at most twice its size.
+  const double gate2 = options_.gate_px * Scale() + std::min(3.0 * sigma_px, options_.gate_px * Scale());
   const double d2 = (det.center - m.pixel).norm();
   if (d2 > gate2) return kForbidden;
   double cost = (d2 / gate2) * (d2 / gate2);
   if (det.has_depth) {
-    const double gate3 = options_.gate_mm / 1000.0 + 3.0 * sigma.norm();
-    const double d3 = (det.position - p).norm();
-    if (d3 > gate3) return kForbidden;
-    cost += (d3 / gate3) * (d3 / gate3);
+    const double gate3 = gate_z + std::min(3.0 * sigma.z(), gate_z);
+    const double dz = std::abs(det.position.z() - p.z());
+    if (dz > gate3) return kForbidden;
+    cost += (dz / gate3) * (dz / gate3);
   }
   return cost;
 }
