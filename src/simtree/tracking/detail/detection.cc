@@ -77,6 +77,22 @@ double RobustDepth(const DepthImage& depth, double depth_scale_m, const std::vec
   return second * depth_scale_m;
 }
 
+bool RemeasureNear(const Detection& det, const CameraIntrinsics& intrinsics, double z_axis,
+                   double window_m, Eigen::Vector3d* position) {
+  if (!det.has_depth) return false;
+  const double offset = det.position.z() - det.front_m;
+  std::vector<double> near;
+  for (double d : det.depths_m) {
+    if (std::abs(d + offset - z_axis) <= window_m) near.push_back(d);
+  }
+  // Enough of the tape agrees with the prediction: at least two pixels and a quarter of them.
+  if (near.size() < 2 || 4 * near.size() < det.depths_m.size()) return false;
+  const double front =
+      near[std::min(near.size() - 1, static_cast<size_t>(det.depth_quantile * near.size()))];
+  *position = intrinsics.Unproject(det.center.x(), det.center.y(), front + offset);
+  return true;
+}
+
 Detection MeasureBlob(const Blob& blob, const RgbdImage& image, BlobDetector& detector,
                       const MeasureOptions& options) {
   Detection det;
@@ -118,10 +134,16 @@ Detection MeasureBlob(const Blob& blob, const RgbdImage& image, BlobDetector& de
   const double z_surface =
       RobustDepth(image.depth, k.depth_scale_m, strong.size() >= 2 ? strong : blob.pixels,
                   options.edge_m, options.depth_quantile);
+  for (int i : strong.size() >= 2 ? strong : blob.pixels) {
+    if (image.depth.pixels[i] != 0) det.depths_m.push_back(image.depth.pixels[i] * k.depth_scale_m);
+  }
+  std::sort(det.depths_m.begin(), det.depths_m.end());
+  det.depth_quantile = options.depth_quantile;
   if (z_surface > 0.0) {
     det.has_depth = true;
     // The smaller half-length spans the branch: its radius in pixels.
     det.radius_m = std::clamp(semi[0] * z_surface / k.fx, 0.002, 0.06);
+    det.front_m = z_surface;
     const double z_axis = z_surface + options.axis_offset_ratio * det.radius_m;
     det.position = k.Unproject(det.center.x(), det.center.y(), z_axis);
   }

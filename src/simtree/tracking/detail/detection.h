@@ -41,6 +41,9 @@ struct Detection {
   bool has_depth = false;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // camera frame, m (when has_depth)
   double radius_m = 0.0;  // branch radius estimate
+  double front_m = 0.0;   // the measured front's depth (m)
+  std::vector<double> depths_m;  // the clean tape pixels' depths, sorted (m)
+  double depth_quantile = 0.25;  // the quantile taken as the front
 
   std::array<double, 4> Box() const {
     return {center.x() - half_extent.x(), center.y() - half_extent.y(), 2.0 * half_extent.x(),
@@ -56,6 +59,12 @@ Detection MeasureBlob(const Blob& blob, const RgbdImage& image, BlobDetector& de
 // chroma: 1 at the blob's typical tape pixel, 0 at its background (the median of the ring pixels
 // with no tape colour).
 std::vector<double> TapeCoverage(const Blob& blob, const RgbImage& color, BlobDetector& detector);
+
+// The 3D centre measured again from only the tape depths that agree (within `window_m`) with a
+// predicted axis depth `z_axis`: what a marker partly hidden behind a twig, whose tape pixels mix
+// their depth with the twig's, still says about itself. False when too few pixels agree.
+bool RemeasureNear(const Detection& det, const CameraIntrinsics& intrinsics, double z_axis,
+                   double window_m, Eigen::Vector3d* position);
 
 // Robust depth (m) of `pixels` of `depth`, the `quantile` of their depths once depth edges and
 // outliers are dropped: 0 when none has a usable measurement.

@@ -94,7 +94,11 @@ double MarkerTracker::Cost(const Marker& m, const Detection& det) const {
   double cost = (d2 / gate2) * (d2 / gate2);
   if (det.has_depth) {
     const double gate3 = gate_z + std::min(3.0 * sigma.z(), gate_z);
-    const double dz = std::abs(det.position.z() - p.z());
+    double dz = std::abs(det.position.z() - p.z());
+    Eigen::Vector3d again;
+    if (dz > gate3 && RemeasureNear(det, intrinsics_, p.z(), gate_z, &again)) {
+      dz = std::abs(again.z() - p.z());
+    }
     if (dz > gate3) return kForbidden;
     cost += (dz / gate3) * (dz / gate3);
   }
@@ -131,8 +135,20 @@ std::vector<int> MarkerTracker::Assign(const std::vector<Detection>& detections)
   return assignment;
 }
 
-MarkerFrameResult MarkerTracker::Measured(Marker& m, const Detection& det) {
+MarkerFrameResult MarkerTracker::Measured(Marker& m, const Detection& measured) {
   MarkerFrameResult out;
+  Detection det = measured;
+  if (det.has_depth && m.started && m.coast <= options_.max_coast_frames) {
+    // A depth far from the prediction (a twig in front mixing its depth in): keep the tape
+    // pixels that agree with the prediction.
+    const double gate_z = options_.gate_mm / 1000.0;
+    const double z_pred = m.motion.position().z();
+    Eigen::Vector3d again;
+    if (std::abs(det.position.z() - z_pred) > 0.5 * gate_z &&
+        RemeasureNear(det, intrinsics_, z_pred, 0.5 * gate_z, &again)) {
+      det.position = again;
+    }
+  }
   out.box.marker = m.id;
   out.box.state = MarkerState::kTracked;
   const bool was_lost = m.coast > options_.max_coast_frames;
