@@ -139,6 +139,7 @@ void BlobDetector::SplitByDepth(const RgbImage& color, const DepthImage& depth,
     const Eigen::Vector2d p(i % depth.width, i / depth.width);
     ((p - near_c).squaredNorm() <= (p - far_c).squaredNorm() ? near : far).pixels.push_back(i);
   }
+  near.source = far.source = blob.source;
   out->push_back(std::move(near));
   out->push_back(std::move(far));
 }
@@ -208,8 +209,10 @@ std::vector<Blob> BlobDetector::Find(const RgbdImage& image,
   }
   MergeFragments(image.depth, &grown);
   std::vector<Blob> blobs;
-  for (Blob& blob : grown) {
+  for (size_t g = 0; g < grown.size(); ++g) {
+    Blob& blob = grown[g];
     if (static_cast<int>(blob.pixels.size()) < options_.min_blob_pixels) continue;
+    blob.source = static_cast<int>(g);
     SplitByDepth(image.color, image.depth, image.intrinsics.depth_scale_m, std::move(blob),
                  &blobs);
   }

@@ -28,6 +28,7 @@ struct BlobDetectorOptions {
 struct Blob {
   std::vector<int> pixels;
   std::vector<int> ring;  // 8-neighbours of `pixels` not in any blob (mixed tape/background)
+  int source = 0;         // the blob it was split from (blobs of one source share it)
 };
 
 // A pixel at least this much tape (TapeColorModel::Weight) is clean: its depth is the tape's.

@@ -97,6 +97,7 @@ Detection MeasureBlob(const Blob& blob, const RgbdImage& image, BlobDetector& de
                       const MeasureOptions& options) {
   Detection det;
   det.pixel_count = static_cast<int>(blob.pixels.size());
+  det.source = blob.source;
   const int width = image.color.width;
   const std::vector<double> coverage = TapeCoverage(blob, image.color, detector);
   double sw = 0.0;

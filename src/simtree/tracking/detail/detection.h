@@ -38,6 +38,7 @@ struct Detection {
   Eigen::Vector2d half_extent = Eigen::Vector2d::Zero();  // half width, half height of the box
   double weight = 0.0;   // summed tape weight (about the tape's visible area, px)
   int pixel_count = 0;   // tape pixels
+  int source = 0;        // Blob::source: detections split from one blob share it
   bool has_depth = false;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // camera frame, m (when has_depth)
   double radius_m = 0.0;  // branch radius estimate

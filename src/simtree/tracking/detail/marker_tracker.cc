@@ -13,6 +13,8 @@ constexpr double kForbidden = std::numeric_limits<double>::infinity();
 // A detection this much weaker than the marker's fully visible tape is partly hidden: its box
 // comes from the band's remembered size instead.
 constexpr double kPartialWeight = 0.7;
+// Blobs this close (px at 640 px width) at one depth may be pieces of one tape.
+constexpr double kFragmentPx = 8.0;
 
 }  // namespace
 
@@ -132,7 +134,35 @@ std::vector<int> MarkerTracker::Assign(const std::vector<Detection>& detections)
       taken[solved[r]] = true;
     }
   }
+  DropNeighbourFragments(detections, &assignment);
   return assignment;
+}
+
+void MarkerTracker::DropNeighbourFragments(const std::vector<Detection>& detections,
+                                           std::vector<int>* assignment) const {
+  // A marker that was not measured in the last frame may not take a blob lying right beside the
+  // blob of a marker that was, at its depth or split from the same blob: that is likely a piece
+  // of the neighbour's tape (cut by a twig, or its pixels' depths mixed with what is behind), and
+  // taking it is how identities swap. The marker waits until its own tape stands apart.
+  const double near_px = kFragmentPx * Scale();
+  for (size_t i = 0; i < markers_.size(); ++i) {
+    const int d = (*assignment)[i];
+    if (d < 0 || (markers_[i].started && markers_[i].coast == 0)) continue;
+    for (size_t j = 0; j < markers_.size(); ++j) {
+      const int e = (*assignment)[j];
+      if (j == i || e < 0 || !markers_[j].started || markers_[j].coast != 0) continue;
+      const Detection& a = detections[d];
+      const Detection& b = detections[e];
+      const bool beside = (a.center - b.center).norm() <= near_px;
+      const bool same_depth = !a.has_depth || !b.has_depth ||
+                              std::abs(a.position.z() - b.position.z()) <
+                                  options_.split_depth_mm / 1000.0;
+      if (beside && (same_depth || a.source == b.source)) {
+        (*assignment)[i] = -1;
+        break;
+      }
+    }
+  }
 }
 
 MarkerFrameResult MarkerTracker::Measured(Marker& m, const Detection& measured) {

@@ -52,6 +52,8 @@ class MarkerTracker {
   std::vector<SearchWindow> Windows() const;
   double Cost(const Marker& marker, const Detection& det) const;
   std::vector<int> Assign(const std::vector<Detection>& detections);
+  void DropNeighbourFragments(const std::vector<Detection>& detections,
+                              std::vector<int>* assignment) const;
   MarkerFrameResult Measured(Marker& marker, const Detection& det);
   MarkerFrameResult Unmeasured(Marker& marker);
   double Scale() const { return intrinsics_.width / 640.0; }
