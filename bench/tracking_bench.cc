@@ -31,8 +31,13 @@ struct Stream {
 // 16 markers on a 4 x 4 grid swinging with different phases, 640 x 576.
 Stream DrawnStream() {
   test::DrawnStream s;
-  s.intrinsics = CameraIntrinsics{.width = 640, .height = 576, .fx = 434.2, .fy = 434.2,
-                                  .cx = 319.5, .cy = 287.5, .depth_scale_m = 0.001};
+  s.intrinsics = CameraIntrinsics{.width = 640,
+                                  .height = 576,
+                                  .fx = 434.2,
+                                  .fy = 434.2,
+                                  .cx = 319.5,
+                                  .cy = 287.5,
+                                  .depth_scale_m = 0.001};
   s.half_length_m = 0.02;
   s.radius_m = 0.008;
   Stream out;
@@ -81,8 +86,8 @@ void BM_TrackFrames(benchmark::State& state) {
     ids.push_back(m.id);
     pixels.push_back(m.pixel);
   }
-  const detail::TapeColorModel model = detail::FitColorModel(
-      detail::ColorModelFromName("auto"), s.frames[0].color, pixels, 4);
+  const detail::TapeColorModel model =
+      detail::FitColorModel(detail::ColorModelFromName("auto"), s.frames[0].color, pixels, 4);
   int64_t frames = 0;
   for (auto _ : state) {
     detail::MarkerTracker tracker(TrackOptions{}, model, s.frames[0].intrinsics, ids, pixels);

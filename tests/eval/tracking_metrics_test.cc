@@ -30,8 +30,8 @@ struct Fixture {
       std::vector<Eigen::Vector3d> p;
       for (int m = 0; m < 2; ++m) {
         gt.markers.push_back(MarkerBox2d{m, true, 1.0, 50, {100.0 * m, 0, 10, 10}});
-        fb.markers.push_back(MarkerBox{m, {100.0 * m, 0, 10, 10}, {100.0 * m + 5, 5},
-                                       MarkerState::kTracked, 1.0});
+        fb.markers.push_back(
+            MarkerBox{m, {100.0 * m, 0, 10, 10}, {100.0 * m + 5, 5}, MarkerState::kTracked, 1.0});
         p.push_back(Eigen::Vector3d(0.5 * m, 0, 2));
       }
       truth_boxes.push_back(gt);

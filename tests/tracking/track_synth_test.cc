@@ -25,8 +25,8 @@ TrackInit InitFromTruth(const fs::path& capture) {
   init.frame = truth[0].frame;
   for (const MarkerBox2d& m : truth[0].markers) {
     if (m.box[2] <= 0.0 || m.box[3] <= 0.0) continue;
-    init.markers.push_back({m.id, Eigen::Vector2d(m.box[0] + 0.5 * m.box[2],
-                                                  m.box[1] + 0.5 * m.box[3])});
+    init.markers.push_back(
+        {m.id, Eigen::Vector2d(m.box[0] + 0.5 * m.box[2], m.box[1] + 0.5 * m.box[3])});
   }
   return init;
 }
@@ -36,11 +36,12 @@ TEST(TrackSynth, ShortStreamTrackedWithoutSwaps) {
   const fs::path capture = test::TempDir() / "capture";
   const test::CliResult made = test::RunCli(
       "-q synth --species acer_rubrum --seed 2 --duration 5.5 --views 1 --no-contact-sheet "
-      "--out " + capture.string());
+      "--out " +
+      capture.string());
   ASSERT_EQ(made.exit_code, 0) << made.output;
   const fs::path init_path = capture / "pull" / "init.json";
-  const TrackInit init = fs::exists(init_path) ? ReadTrackInitJson(init_path)
-                                               : InitFromTruth(capture);
+  const TrackInit init =
+      fs::exists(init_path) ? ReadTrackInitJson(init_path) : InitFromTruth(capture);
   const TrackResult result = Track(capture / "pull", init, TrackOptions{});
   const eval::TrackingScores s = eval::ScoreTracking(
       result.boxes, result.trajectories, ReadMarkers2d(capture / "gt" / "markers_2d.json"),

@@ -5,12 +5,13 @@
 // Per frame: predict every marker with its own 3D motion model, look for tape-coloured blobs
 // near each prediction (a colour model fitted to the first frame's marker pixels), split blobs
 // where markers cross (by depth), measure each blob's sub-pixel centre, its 3D centre (a robust
-// median of its own depth pixels, pushed from the tape's surface to the branch axis) and the box
-// of the whole tape band, assign blobs to predictions (gated Hungarian on 3D distance), and keep a
-// state per marker: tracked (measured this frame), predicted (coasting through a short loss) or
-// lost. A marker found again after a loss is re-identified by its predicted position and its rest
-// position. Trajectories hold measured positions only: valid 0 wherever a marker was not
-// measured.
+// low quantile of its own depth pixels, pushed from the tape's front to the branch axis) and the
+// box of the whole tape band, assign blobs to predictions (gated Hungarian on image distance and
+// depth difference), and keep a state per marker: tracked (measured this frame), predicted
+// (coasting through a short loss) or lost. A marker found again after a loss is re-identified by
+// its predicted position and its rest position. After the last frame each run of measured positions
+// is smoothed (Kalman forward, Rauch-Tung-Striebel backward). Trajectories hold measured positions
+// only: valid 0 wherever a marker was not measured.
 //
 //   const TrackInit init = ReadTrackInitJson(capture / "pull" / "init.json");
 //   TrackResult result = Track(capture / "pull", init, TrackOptions{});
@@ -110,8 +111,8 @@ struct FlaggedFrame {
 };
 
 struct TrackResult {
-  Trajectories trajectories;  // pull camera frame, metres; valid only where measured
-  std::vector<FrameBoxes> boxes;  // one per frame
+  Trajectories trajectories;         // pull camera frame, metres; valid only where measured
+  std::vector<FrameBoxes> boxes;     // one per frame
   std::vector<MarkerCounts> counts;  // one per marker, in trajectories order
   std::vector<FlaggedFrame> flagged;
   CameraIntrinsics intrinsics;

@@ -18,8 +18,7 @@ bool OnDepthEdge(const DepthImage& depth, int x, int y, double edge_units) {
   return false;
 }
 
-SearchWindow WindowAround(const Eigen::Vector2d& center, double half_size, int width,
-                          int height) {
+SearchWindow WindowAround(const Eigen::Vector2d& center, double half_size, int width, int height) {
   SearchWindow w;
   w.x0 = std::clamp(static_cast<int>(std::floor(center.x() - half_size)), 0, width);
   w.y0 = std::clamp(static_cast<int>(std::floor(center.y() - half_size)), 0, height);
@@ -174,8 +173,8 @@ void BlobDetector::MergeFragments(const DepthImage& depth, std::vector<Blob>* bl
       if ((*blobs)[b].pixels.empty() || (*blobs)[a].pixels.empty()) continue;
       const Extent& p = ext[a];
       const Extent& q = ext[b];
-      const bool near = p.x0 - gap <= q.x1 && q.x0 - gap <= p.x1 && p.y0 - gap <= q.y1 &&
-                        q.y0 - gap <= p.y1;
+      const bool near =
+          p.x0 - gap <= q.x1 && q.x0 - gap <= p.x1 && p.y0 - gap <= q.y1 && q.y0 - gap <= p.y1;
       const bool same = p.depth == 0.0 || q.depth == 0.0 ||
                         std::abs(p.depth - q.depth) * depth_scale_m_ < same_depth;
       if (!near || !same) continue;
@@ -188,9 +187,9 @@ void BlobDetector::MergeFragments(const DepthImage& depth, std::vector<Blob>* bl
       b = a;  // look again from a: its box grew
     }
   }
-  blobs->erase(std::remove_if(blobs->begin(), blobs->end(),
-                              [](const Blob& b) { return b.pixels.empty(); }),
-               blobs->end());
+  blobs->erase(
+      std::remove_if(blobs->begin(), blobs->end(), [](const Blob& b) { return b.pixels.empty(); }),
+      blobs->end());
 }
 
 std::vector<Blob> BlobDetector::Find(const RgbdImage& image,
@@ -213,8 +212,7 @@ std::vector<Blob> BlobDetector::Find(const RgbdImage& image,
     Blob& blob = grown[g];
     if (static_cast<int>(blob.pixels.size()) < options_.min_blob_pixels) continue;
     blob.source = static_cast<int>(g);
-    SplitByDepth(image.color, image.depth, image.intrinsics.depth_scale_m, std::move(blob),
-                 &blobs);
+    SplitByDepth(image.color, image.depth, image.intrinsics.depth_scale_m, std::move(blob), &blobs);
   }
   // The soft ring: background neighbours that may hold part of the tape.
   for (Blob& blob : blobs) {

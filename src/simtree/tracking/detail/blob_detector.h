@@ -18,10 +18,10 @@
 namespace simtree::tracking::detail {
 
 struct BlobDetectorOptions {
-  int min_blob_pixels = 3;        // fewer tape pixels: not a detection
-  int max_blob_pixels = 4000;     // a blob stops growing here (a red object, not a tape)
-  double split_depth_m = 0.04;    // a depth gap this large inside a blob splits it
-  int fragment_gap_px = 2;        // blobs this close at one depth are one tape (merged)
+  int min_blob_pixels = 3;      // fewer tape pixels: not a detection
+  int max_blob_pixels = 4000;   // a blob stops growing here (a red object, not a tape)
+  double split_depth_m = 0.04;  // a depth gap this large inside a blob splits it
+  int fragment_gap_px = 2;      // blobs this close at one depth are one tape (merged)
 };
 
 // A blob: its tape pixels (indices y * width + x) and the soft ring around them.
@@ -61,8 +61,8 @@ class BlobDetector {
   bool IsTape(const RgbImage& image, int index);
   Blob Grow(const RgbImage& image, int seed);
   void MergeFragments(const DepthImage& depth, std::vector<Blob>* blobs) const;
-  void SplitByDepth(const RgbImage& color, const DepthImage& depth, double depth_scale_m,
-                    Blob blob, std::vector<Blob>* out);
+  void SplitByDepth(const RgbImage& color, const DepthImage& depth, double depth_scale_m, Blob blob,
+                    std::vector<Blob>* out);
 
   TapeColorModel model_;
   BlobDetectorOptions options_;

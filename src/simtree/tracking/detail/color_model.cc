@@ -82,9 +82,10 @@ float TapeColorModel::Weight(uint8_t r, uint8_t g, uint8_t b) const {
 }
 
 std::string TapeColorModel::Describe() const {
-  return fmt::format("hue {:.0f} +- {:.0f} deg, saturation >= {:.2f} (all tape from {:.2f}), "
-                     "value >= {:.0f}",
-                     hue_deg, hue_tolerance_deg, min_saturation, full_saturation, min_value);
+  return fmt::format(
+      "hue {:.0f} +- {:.0f} deg, saturation >= {:.2f} (all tape from {:.2f}), "
+      "value >= {:.0f}",
+      hue_deg, hue_tolerance_deg, min_saturation, full_saturation, min_value);
 }
 
 TapeColorModel ColorModelFromName(const std::string& name) {
@@ -96,8 +97,9 @@ TapeColorModel ColorModelFromName(const std::string& name) {
     model.hue_deg = it->second;
     return model;
   }
-  const bool hex = name.size() == 7 && name[0] == '#' &&
-                   std::all_of(name.begin() + 1, name.end(), [](char c) { return std::isxdigit(c); });
+  const bool hex =
+      name.size() == 7 && name[0] == '#' &&
+      std::all_of(name.begin() + 1, name.end(), [](char c) { return std::isxdigit(c); });
   if (!hex) {
     throw InputError("--color", "",
                      fmt::format("expected auto, red, orange, yellow, green, blue or #rrggbb, got "

@@ -120,7 +120,8 @@ Detection MeasureBlob(const Blob& blob, const RgbdImage& image, BlobDetector& de
   Eigen::Vector2d half = Eigen::Vector2d::Zero();
   Eigen::Vector2d semi;  // the rectangle's half-lengths along its two axes
   for (int k = 0; k < 2; ++k) {
-    semi[k] = options.box_scale * std::sqrt(3.0 * (std::max(0.0, eig.eigenvalues()[k]) + 1.0 / 12.0));
+    semi[k] =
+        options.box_scale * std::sqrt(3.0 * (std::max(0.0, eig.eigenvalues()[k]) + 1.0 / 12.0));
     semi[k] = std::max(semi[k], 0.5);
     half += semi[k] * eig.eigenvectors().col(k).cwiseAbs();
   }

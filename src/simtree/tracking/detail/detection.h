@@ -1,7 +1,7 @@
 #pragma once
 // What one tape blob says about its marker: the sub-pixel centre (the centroid of its pixels and
-// their mixed ring, each weighted by its share of tape, TapeCoverage), the box of the whole tape band, and the marker's 3D centre on
-// the branch axis.
+// their mixed ring, each weighted by its share of tape, TapeCoverage), the box of the whole tape
+// band, and the marker's 3D centre on the branch axis.
 //
 // Box: a band seen from the side projects to about a rectangle (its length along the branch by
 // the branch's diameter across it). The weighted second moments of the blob's pixels, plus each
@@ -34,17 +34,17 @@ struct MeasureOptions {
 };
 
 struct Detection {
-  Eigen::Vector2d center = Eigen::Vector2d::Zero();  // px
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();       // px
   Eigen::Vector2d half_extent = Eigen::Vector2d::Zero();  // half width, half height of the box
-  double weight = 0.0;   // summed tape weight (about the tape's visible area, px)
-  int pixel_count = 0;   // tape pixels
-  int source = 0;        // Blob::source: detections split from one blob share it
+  double weight = 0.0;  // summed tape weight (about the tape's visible area, px)
+  int pixel_count = 0;  // tape pixels
+  int source = 0;       // Blob::source: detections split from one blob share it
   bool has_depth = false;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  // camera frame, m (when has_depth)
-  double radius_m = 0.0;  // branch radius estimate
-  double front_m = 0.0;   // the measured front's depth (m)
-  std::vector<double> depths_m;  // the clean tape pixels' depths, sorted (m)
-  double depth_quantile = 0.25;  // the quantile taken as the front
+  double radius_m = 0.0;                               // branch radius estimate
+  double front_m = 0.0;                                // the measured front's depth (m)
+  std::vector<double> depths_m;                        // the clean tape pixels' depths, sorted (m)
+  double depth_quantile = 0.25;                        // the quantile taken as the front
 
   std::array<double, 4> Box() const {
     return {center.x() - half_extent.x(), center.y() - half_extent.y(), 2.0 * half_extent.x(),

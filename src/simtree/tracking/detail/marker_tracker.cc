@@ -73,8 +73,8 @@ double MarkerTracker::Cost(const Marker& m, const Detection& det) const {
   const double gate_z = options_.gate_mm / 1000.0;
   if (!m.started || !active) {
     // Found again (or never found yet): near its last pixel or its rest pixel, in the image.
-    const double gate = (active ? options_.search_radius_px : options_.reacquire_radius_px) *
-                        Scale();
+    const double gate =
+        (active ? options_.search_radius_px : options_.reacquire_radius_px) * Scale();
     const double d2 = std::min((det.center - m.pixel).norm(), (det.center - m.rest_pixel).norm());
     if (d2 > gate) return kForbidden;
     double cost = (d2 / gate) * (d2 / gate);
@@ -90,7 +90,8 @@ double MarkerTracker::Cost(const Marker& m, const Detection& det) const {
   const Eigen::Vector3d sigma = m.motion.position_sigma();
   const double sigma_px = std::max(sigma.x(), sigma.y()) * intrinsics_.fx / std::max(p.z(), 0.1);
   // The gate grows with the prediction's uncertainty while coasting, to at most twice its size.
-  const double gate2 = options_.gate_px * Scale() + std::min(3.0 * sigma_px, options_.gate_px * Scale());
+  const double gate2 =
+      options_.gate_px * Scale() + std::min(3.0 * sigma_px, options_.gate_px * Scale());
   const double d2 = (det.center - m.pixel).norm();
   if (d2 > gate2) return kForbidden;
   double cost = (d2 / gate2) * (d2 / gate2);
@@ -154,9 +155,9 @@ void MarkerTracker::DropNeighbourFragments(const std::vector<Detection>& detecti
       const Detection& a = detections[d];
       const Detection& b = detections[e];
       const bool beside = (a.center - b.center).norm() <= near_px;
-      const bool same_depth = !a.has_depth || !b.has_depth ||
-                              std::abs(a.position.z() - b.position.z()) <
-                                  options_.split_depth_mm / 1000.0;
+      const bool same_depth =
+          !a.has_depth || !b.has_depth ||
+          std::abs(a.position.z() - b.position.z()) < options_.split_depth_mm / 1000.0;
       if (beside && (same_depth || a.source == b.source)) {
         (*assignment)[i] = -1;
         break;
