@@ -48,6 +48,9 @@ void AddTrackOptions(CLI::App* verb, TrackArgs& a) {
   verb->add_option("--max-coast", a.options.max_coast_frames,
                    "Frames a marker coasts on its prediction before it is called lost")
       ->capture_default_str();
+  verb->add_option("--process-noise", a.options.process_noise_mps2,
+                   "Acceleration noise of the motion model (m/s^2): larger follows faster swings")
+      ->capture_default_str();
   verb->add_option("--gate-mm", a.options.gate_mm,
                    "Largest 3D jump (mm) between a marker's prediction and its detection")
       ->capture_default_str();
@@ -86,11 +89,11 @@ void RunTrack(TrackArgs& a) {
     tracked += c.tracked;
     total += c.tracked + c.predicted + c.lost;
   }
-  fmt::print("tracked {} markers over {} frames: {:.1f}% of marker-frames measured, {} flagged "
-             "frames; colour model {}; wrote {}\n",
-             result.counts.size(), result.trajectories.frame_count(),
-             total > 0 ? 100.0 * tracked / total : 0.0, result.flagged.size(), result.color_model,
-             a.out);
+  fmt::print(
+      "tracked {} markers over {} frames: {:.1f}% of marker-frames measured, {} flagged "
+      "frames; colour model {}; wrote {}\n",
+      result.counts.size(), result.trajectories.frame_count(),
+      total > 0 ? 100.0 * tracked / total : 0.0, result.flagged.size(), result.color_model, a.out);
 }
 
 }  // namespace

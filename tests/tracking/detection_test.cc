@@ -32,8 +32,7 @@ TEST(Detection, SubPixelCentreBoxAndAxisDepthOfADrawnBand) {
   ASSERT_EQ(found.size(), 1u);
   const Detection& d = found[0];
   const Eigen::Vector2d truth = s.intrinsics.Project(p);
-  EXPECT_LT((d.center - truth).norm(), 0.15) << d.center.transpose() << " vs "
-                                             << truth.transpose();
+  EXPECT_LT((d.center - truth).norm(), 0.15) << d.center.transpose() << " vs " << truth.transpose();
   EXPECT_GT(Iou(d.Box(), test::DrawnBox(s, p)), 0.75);
   ASSERT_TRUE(d.has_depth);
   EXPECT_LT((d.position - p).norm(), 0.004);

@@ -14,8 +14,13 @@
 namespace simtree::test {
 
 struct DrawnStream {
-  CameraIntrinsics intrinsics{.width = 320, .height = 288, .fx = 217.0, .fy = 217.0,
-                              .cx = 159.5, .cy = 143.5, .depth_scale_m = 0.001};
+  CameraIntrinsics intrinsics{.width = 320,
+                              .height = 288,
+                              .fx = 217.0,
+                              .fy = 217.0,
+                              .cx = 159.5,
+                              .cy = 143.5,
+                              .depth_scale_m = 0.001};
   double fps = 30.0;
   double half_length_m = 0.02;  // band half-extent along the (vertical) branch
   double radius_m = 0.012;      // branch radius: the band's half-width
@@ -60,13 +65,15 @@ inline RgbdImage DrawFrame(const DrawnStream& s, const std::vector<Eigen::Vector
     if (p.z() <= 0.0) continue;
     const auto box = DrawnBox(s, p);
     const double surface_mm = 1000.0 * (p.z() - 0.85 * s.radius_m);
-    for (int y = std::max(0, int(box[1]) - 1); y <= std::min(k.height - 1, int(box[1] + box[3]) + 1); ++y) {
-      for (int x = std::max(0, int(box[0]) - 1); x <= std::min(k.width - 1, int(box[0] + box[2]) + 1); ++x) {
+    for (int y = std::max(0, int(box[1]) - 1);
+         y <= std::min(k.height - 1, int(box[1] + box[3]) + 1); ++y) {
+      for (int x = std::max(0, int(box[0]) - 1);
+           x <= std::min(k.width - 1, int(box[0] + box[2]) + 1); ++x) {
         const double c = Coverage(x, y, box[0], box[0] + box[2], box[1], box[1] + box[3]);
         if (c <= 0.0) continue;
         for (int ch = 0; ch < 3; ++ch) {
-          image.color.at(x, y, ch) =
-              static_cast<uint8_t>(std::lround(c * s.tape[ch] + (1 - c) * image.color.at(x, y, ch)));
+          image.color.at(x, y, ch) = static_cast<uint8_t>(
+              std::lround(c * s.tape[ch] + (1 - c) * image.color.at(x, y, ch)));
         }
         if (c >= 0.5) image.depth.at(x, y) = static_cast<uint16_t>(std::lround(surface_mm));
       }
@@ -88,8 +95,10 @@ inline TrackInit WriteDrawnStream(const DrawnStream& s, const std::filesystem::p
   WriteFramesCsv(rows, pull / "frames.csv");
   std::vector<MarkerLink> links;
   for (size_t m = 0; m < s.positions[0].size(); ++m) {
-    links.push_back(MarkerLink{.id = static_cast<int>(m), .label = "m" + std::to_string(m),
-                               .parent = m == 0 ? -1 : 0, .branch = std::nullopt});
+    links.push_back(MarkerLink{.id = static_cast<int>(m),
+                               .label = "m" + std::to_string(m),
+                               .parent = m == 0 ? -1 : 0,
+                               .branch = std::nullopt});
   }
   WriteMarkersJson(links, pull / "markers.json");
   TrackInit init;

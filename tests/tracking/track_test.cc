@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "drawn_stream.h"
@@ -162,6 +163,27 @@ TEST_F(TrackTest, OptionsOutOfRangeNameTheField) {
   o = TrackOptions{};
   o.color = "mauve";
   EXPECT_THROW(o.Validate(), InputError);
+}
+
+}  // namespace
+}  // namespace simtree::tracking
+
+namespace simtree::tracking {
+namespace {
+
+TEST(TrackCli, WritesOutputsAndRefusesAMissingInit) {
+  const fs::path dir = test::TempDir();
+  const TrackInit init = test::WriteDrawnStream(CrossingStream(4), dir / "pull");
+  const std::string pull = (dir / "pull").string(), out = (dir / "t").string();
+  const test::CliResult missing = test::RunCli(fmt::format("-q track {} --out {}", pull, out));
+  EXPECT_NE(missing.exit_code, 0);
+  EXPECT_NE(missing.output.find("init.json"), std::string::npos) << missing.output;
+  WriteTrackInitJson(init, dir / "init.json");
+  const test::CliResult ok = test::RunCli(
+      fmt::format("-q track {} --init {} --out {}", pull, (dir / "init.json").string(), out));
+  ASSERT_EQ(ok.exit_code, 0) << ok.output;
+  EXPECT_TRUE(fs::exists(dir / "t" / "trajectories.csv"));
+  EXPECT_TRUE(fs::exists(dir / "t" / "boxes.csv"));
 }
 
 }  // namespace

@@ -54,8 +54,8 @@ std::map<int, size_t> FrameIndex(const std::vector<int>& frames) {
 }
 
 // Whether a measured position sits on another marker's true centre instead of its own.
-bool IsSwap(const Trajectories& truth, size_t truth_frame, int own_track,
-            const Eigen::Vector3d& p, double swap_m) {
+bool IsSwap(const Trajectories& truth, size_t truth_frame, int own_track, const Eigen::Vector3d& p,
+            double swap_m) {
   const MarkerTrack& own = truth.tracks[own_track];
   if (own.valid[truth_frame] && (own.positions[truth_frame] - p).norm() <= swap_m) return false;
   for (size_t t = 0; t < truth.tracks.size(); ++t) {
@@ -76,8 +76,8 @@ void ScoreF(const std::vector<Sample>& samples, int visible, TrackingScores* s) 
   double iou_sum = 0.0;  // reported so far; an invisible report adds 0
   for (size_t k = 0; k < reported.size(); ++k) {
     iou_sum += reported[k]->visible ? reported[k]->iou : 0.0;
-    const bool last_of_tau = k + 1 == reported.size() ||
-                             reported[k + 1]->confidence < reported[k]->confidence;
+    const bool last_of_tau =
+        k + 1 == reported.size() || reported[k + 1]->confidence < reported[k]->confidence;
     if (!last_of_tau) continue;
     const double pr = iou_sum / static_cast<double>(k + 1);
     const double re = visible > 0 ? iou_sum / visible : 0.0;
@@ -115,11 +115,11 @@ void Summarise(const std::vector<Sample>& samples, const TrackingScoreOptions& o
   double area = 0.0;
   for (int k = 0; k < n; ++k) {
     const double t = static_cast<double>(k) / (n - 1);
-    const double share =
-        ious.empty() ? 0.0
-                     : static_cast<double>(std::count_if(ious.begin(), ious.end(),
-                                                         [&](double v) { return v > t; })) /
-                           static_cast<double>(ious.size());
+    const double share = ious.empty()
+                             ? 0.0
+                             : static_cast<double>(std::count_if(ious.begin(), ious.end(),
+                                                                 [&](double v) { return v > t; })) /
+                                   static_cast<double>(ious.size());
     s->success_curve.push_back(share);
     area += share;
   }

@@ -34,24 +34,24 @@ struct TrackingScoreOptions {
 
 struct MarkerTrackingScore {
   int marker = 0;
-  int visible = 0;                 // visible samples
-  int tracked_visible = 0;         // of them, tracked (measured)
-  double median_error_mm = 0.0;    // 3D, over tracked samples with a true position; NaN if none
+  int visible = 0;               // visible samples
+  int tracked_visible = 0;       // of them, tracked (measured)
+  double median_error_mm = 0.0;  // 3D, over tracked samples with a true position; NaN if none
   int swap_samples = 0;
 };
 
 struct TrackingScores {
   int frames = 0;
   int visible_samples = 0;
-  int tracked_visible = 0;          // visible samples the tracker measured
-  double tracked_fraction = 0.0;    // tracked_visible / visible_samples
-  int tracked_invisible = 0;        // samples measured where the truth says the tape is hidden
+  int tracked_visible = 0;        // visible samples the tracker measured
+  double tracked_fraction = 0.0;  // tracked_visible / visible_samples
+  int tracked_invisible = 0;      // samples measured where the truth says the tape is hidden
   double success_rate = 0.0;
   double precision = 0.0, recall = 0.0, f_score = 0.0;
-  double f_threshold = 0.0;         // the confidence tau of the F-score
-  double mean_iou = 0.0;            // over visible samples
+  double f_threshold = 0.0;  // the confidence tau of the F-score
+  double mean_iou = 0.0;     // over visible samples
   double median_center_error_px = 0.0, mean_center_error_px = 0.0;  // visible and tracked
-  int error_samples = 0;            // tracked samples with a valid true 3D position
+  int error_samples = 0;  // tracked samples with a valid true 3D position
   double median_error_mm = 0.0, mean_error_mm = 0.0, p95_error_mm = 0.0;
   int swap_samples = 0, swap_events = 0;
   std::vector<double> success_curve;  // share of visible samples with IoU > t, per threshold

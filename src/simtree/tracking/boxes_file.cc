@@ -30,8 +30,8 @@ double Number(const std::string& text, const std::string& source, const std::str
     used = 0;
   }
   if (used == 0 || used != text.size() || !std::isfinite(value)) {
-    throw InputError(source, where, fmt::format("{}: expected a finite number, got '{}'", field,
-                                                text));
+    throw InputError(source, where,
+                     fmt::format("{}: expected a finite number, got '{}'", field, text));
   }
   return value;
 }
@@ -80,8 +80,8 @@ std::string BoxesToCsv(const std::vector<FrameBoxes>& frames) {
   for (const FrameBoxes& f : frames) {
     for (const MarkerBox& b : f.markers) {
       out += fmt::format("{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{},{:.3f}\n", f.frame,
-                         b.marker, b.box[0], b.box[1], b.box[2], b.box[3], b.center[0],
-                         b.center[1], ToString(b.state), b.confidence);
+                         b.marker, b.box[0], b.box[1], b.box[2], b.box[3], b.center[0], b.center[1],
+                         ToString(b.state), b.confidence);
     }
   }
   return out;
@@ -110,9 +110,10 @@ std::vector<FrameBoxes> ParseBoxesCsv(const std::string& text, const std::string
     const MarkerBox box = ParseRow(Split(line), source, where, &frame);
     if (frames.empty() || frames.back().frame != frame) {
       if (!frames.empty() && frame < frames.back().frame) {
-        throw InputError(source, where, fmt::format("frame {} after frame {}: expected frames "
-                                                    "in increasing order",
-                                                    frame, frames.back().frame));
+        throw InputError(source, where,
+                         fmt::format("frame {} after frame {}: expected frames "
+                                     "in increasing order",
+                                     frame, frames.back().frame));
       }
       frames.push_back(FrameBoxes{frame, {}});
     }

@@ -13,6 +13,7 @@
 #include "simtree/tracking/detail/frame_loader.h"
 #include "simtree/tracking/detail/marker_tracker.h"
 #include "simtree/tracking/detail/pull_input.h"
+#include "simtree/tracking/detail/trajectory_smoother.h"
 
 namespace simtree::tracking {
 namespace {
@@ -61,8 +62,9 @@ void Summarise(TrackResult* result) {
     c.marker = result->trajectories.tracks[i].marker;
     for (const FrameBoxes& f : result->boxes) {
       const MarkerState s = f.markers[i].state;
-      (s == MarkerState::kTracked ? c.tracked
-                                  : s == MarkerState::kPredicted ? c.predicted : c.lost)++;
+      (s == MarkerState::kTracked     ? c.tracked
+       : s == MarkerState::kPredicted ? c.predicted
+                                      : c.lost)++;
     }
     result->counts.push_back(c);
     if (result->trajectories.tracks[i].valid_count() == 0) {
@@ -122,9 +124,9 @@ TrackResult Track(const std::filesystem::path& pull_dir, const TrackInit& init,
   const PullStream stream = detail::OpenPullStream(pull_dir);
   const size_t start = detail::CheckInit(stream, init, "init");
   detail::FrameLoader loader(stream, options.threads);
-  const detail::TapeColorModel model = detail::ChooseColorModel(
-      options.color, loader.Get(start).color, init,
-      (stream.directory / stream.frames[start].color).string());
+  const detail::TapeColorModel model =
+      detail::ChooseColorModel(options.color, loader.Get(start).color, init,
+                               (stream.directory / stream.frames[start].color).string());
 
   std::vector<int> ids;
   std::vector<Eigen::Vector2d> pixels;
@@ -162,6 +164,13 @@ TrackResult Track(const std::filesystem::path& pull_dir, const TrackInit& init,
     progress.Advance();
   }
   progress.Done();
+  if (options.smooth) {
+    detail::SmoothTrajectories(
+        result.trajectories,
+        detail::SmootherOptions{.process_noise_mps2 = options.process_noise_mps2,
+                                .noise_xy_m = options.measurement_noise_mm / 1000.0,
+                                .noise_z_m = options.measurement_depth_noise_mm / 1000.0});
+  }
   Summarise(&result);
   return result;
 }

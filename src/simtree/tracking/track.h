@@ -5,12 +5,13 @@
 // Per frame: predict every marker with its own 3D motion model, look for tape-coloured blobs
 // near each prediction (a colour model fitted to the first frame's marker pixels), split blobs
 // where markers cross (by depth), measure each blob's sub-pixel centre, its 3D centre (a robust
-// median of its own depth pixels, pushed from the tape's surface to the branch axis) and the box
-// of the whole tape band, assign blobs to predictions (gated Hungarian on 3D distance), and keep a
-// state per marker: tracked (measured this frame), predicted (coasting through a short loss) or
-// lost. A marker found again after a loss is re-identified by its predicted position and its rest
-// position. Trajectories hold measured positions only: valid 0 wherever a marker was not
-// measured.
+// low quantile of its own depth pixels, pushed from the tape's front to the branch axis) and the
+// box of the whole tape band, assign blobs to predictions (gated Hungarian on image distance and
+// depth difference), and keep a state per marker: tracked (measured this frame), predicted
+// (coasting through a short loss) or lost. A marker found again after a loss is re-identified by
+// its predicted position and its rest position. After the last frame each run of measured positions
+// is smoothed (Kalman forward, Rauch-Tung-Striebel backward). Trajectories hold measured positions
+// only: valid 0 wherever a marker was not measured.
 //
 //   const TrackInit init = ReadTrackInitJson(capture / "pull" / "init.json");
 //   TrackResult result = Track(capture / "pull", init, TrackOptions{});
@@ -52,7 +53,8 @@ struct TrackOptions {
   double search_radius_px = 18.0;
   // Half-size searched around a lost marker's last and rest positions (px, same scaling).
   double reacquire_radius_px = 40.0;
-  // Largest 3D distance between a prediction and a detection assigned to it (mm).
+  // Largest depth difference between a prediction and a detection assigned to it (mm; grown by
+  // three standard deviations of the prediction; three times this for a marker found again).
   double gate_mm = 60.0;
   // Largest image distance between a prediction and a detection assigned to it (px, scaled).
   double gate_px = 14.0;
@@ -68,7 +70,10 @@ struct TrackOptions {
   double process_noise_mps2 = 8.0;
   // Standard deviation of a measured 3D centre across / along the viewing ray (mm).
   double measurement_noise_mm = 2.0;
-  double measurement_depth_noise_mm = 5.0;
+  double measurement_depth_noise_mm = 8.0;
+  // Smooth the measured positions afterwards (forward Kalman and backward Rauch-Tung-Striebel
+  // passes over each run of measured frames; gaps stay gaps).
+  bool smooth = true;
   // Threads loading frames (0: all cores). Tracking itself is sequential (frame after frame).
   int threads = 0;
   // Throws InputError naming the field when an option is out of range.
@@ -106,8 +111,8 @@ struct FlaggedFrame {
 };
 
 struct TrackResult {
-  Trajectories trajectories;  // pull camera frame, metres; valid only where measured
-  std::vector<FrameBoxes> boxes;  // one per frame
+  Trajectories trajectories;         // pull camera frame, metres; valid only where measured
+  std::vector<FrameBoxes> boxes;     // one per frame
   std::vector<MarkerCounts> counts;  // one per marker, in trajectories order
   std::vector<FlaggedFrame> flagged;
   CameraIntrinsics intrinsics;

@@ -18,8 +18,7 @@ bool OnDepthEdge(const DepthImage& depth, int x, int y, double edge_units) {
   return false;
 }
 
-SearchWindow WindowAround(const Eigen::Vector2d& center, double half_size, int width,
-                          int height) {
+SearchWindow WindowAround(const Eigen::Vector2d& center, double half_size, int width, int height) {
   SearchWindow w;
   w.x0 = std::clamp(static_cast<int>(std::floor(center.x() - half_size)), 0, width);
   w.y0 = std::clamp(static_cast<int>(std::floor(center.y() - half_size)), 0, height);
@@ -139,28 +138,82 @@ void BlobDetector::SplitByDepth(const RgbImage& color, const DepthImage& depth,
     const Eigen::Vector2d p(i % depth.width, i / depth.width);
     ((p - near_c).squaredNorm() <= (p - far_c).squaredNorm() ? near : far).pixels.push_back(i);
   }
+  near.source = far.source = blob.source;
   out->push_back(std::move(near));
   out->push_back(std::move(far));
+}
+
+void BlobDetector::MergeFragments(const DepthImage& depth, std::vector<Blob>* blobs) const {
+  // Bounding boxes and median depths of the blobs.
+  struct Extent {
+    int x0, y0, x1, y1;
+    double depth;
+  };
+  std::vector<Extent> ext;
+  for (const Blob& b : *blobs) {
+    Extent e{width_, height_, -1, -1, 0.0};
+    std::vector<uint16_t> d;
+    for (int i : b.pixels) {
+      e.x0 = std::min(e.x0, i % width_);
+      e.x1 = std::max(e.x1, i % width_);
+      e.y0 = std::min(e.y0, i / width_);
+      e.y1 = std::max(e.y1, i / width_);
+      if (depth.pixels[i] != 0) d.push_back(depth.pixels[i]);
+    }
+    if (!d.empty()) {
+      std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+      e.depth = d[d.size() / 2];
+    }
+    ext.push_back(e);
+  }
+  const int gap = options_.fragment_gap_px;
+  const double same_depth = options_.split_depth_m;
+  for (size_t a = 0; a < blobs->size(); ++a) {
+    for (size_t b = a + 1; b < blobs->size(); ++b) {
+      if ((*blobs)[b].pixels.empty() || (*blobs)[a].pixels.empty()) continue;
+      const Extent& p = ext[a];
+      const Extent& q = ext[b];
+      const bool near =
+          p.x0 - gap <= q.x1 && q.x0 - gap <= p.x1 && p.y0 - gap <= q.y1 && q.y0 - gap <= p.y1;
+      const bool same = p.depth == 0.0 || q.depth == 0.0 ||
+                        std::abs(p.depth - q.depth) * depth_scale_m_ < same_depth;
+      if (!near || !same) continue;
+      // b is a fragment of the same tape (a twig across it): a takes its pixels.
+      auto& pa = (*blobs)[a].pixels;
+      pa.insert(pa.end(), (*blobs)[b].pixels.begin(), (*blobs)[b].pixels.end());
+      (*blobs)[b].pixels.clear();
+      ext[a] = Extent{std::min(p.x0, q.x0), std::min(p.y0, q.y0), std::max(p.x1, q.x1),
+                      std::max(p.y1, q.y1), p.depth != 0.0 ? p.depth : q.depth};
+      b = a;  // look again from a: its box grew
+    }
+  }
+  blobs->erase(
+      std::remove_if(blobs->begin(), blobs->end(), [](const Blob& b) { return b.pixels.empty(); }),
+      blobs->end());
 }
 
 std::vector<Blob> BlobDetector::Find(const RgbdImage& image,
                                      const std::vector<SearchWindow>& windows) {
   Prepare(image.color);
+  depth_scale_m_ = image.intrinsics.depth_scale_m;
   std::vector<Blob> grown;
   for (const SearchWindow& w : windows) {
     for (int y = w.y0; y < w.y1; ++y) {
       for (int x = w.x0; x < w.x1; ++x) {
         const int i = y * width_ + x;
         if (claimed_[i] == stamp_ || !IsTape(image.color, i)) continue;
-        Blob blob = Grow(image.color, i);
-        if (static_cast<int>(blob.pixels.size()) >= options_.min_blob_pixels) {
-          grown.push_back(std::move(blob));
-        }
+        grown.push_back(Grow(image.color, i));
       }
     }
   }
+  MergeFragments(image.depth, &grown);
   std::vector<Blob> blobs;
-  for (Blob& blob : grown) SplitByDepth(image.color, image.depth, image.intrinsics.depth_scale_m, std::move(blob), &blobs);
+  for (size_t g = 0; g < grown.size(); ++g) {
+    Blob& blob = grown[g];
+    if (static_cast<int>(blob.pixels.size()) < options_.min_blob_pixels) continue;
+    blob.source = static_cast<int>(g);
+    SplitByDepth(image.color, image.depth, image.intrinsics.depth_scale_m, std::move(blob), &blobs);
+  }
   // The soft ring: background neighbours that may hold part of the tape.
   for (Blob& blob : blobs) {
     for (int i : blob.pixels) {

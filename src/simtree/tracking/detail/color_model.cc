@@ -82,9 +82,10 @@ float TapeColorModel::Weight(uint8_t r, uint8_t g, uint8_t b) const {
 }
 
 std::string TapeColorModel::Describe() const {
-  return fmt::format("hue {:.0f} +- {:.0f} deg, saturation >= {:.2f} (all tape from {:.2f}), "
-                     "value >= {:.0f}",
-                     hue_deg, hue_tolerance_deg, min_saturation, full_saturation, min_value);
+  return fmt::format(
+      "hue {:.0f} +- {:.0f} deg, saturation >= {:.2f} (all tape from {:.2f}), "
+      "value >= {:.0f}",
+      hue_deg, hue_tolerance_deg, min_saturation, full_saturation, min_value);
 }
 
 TapeColorModel ColorModelFromName(const std::string& name) {
@@ -96,8 +97,9 @@ TapeColorModel ColorModelFromName(const std::string& name) {
     model.hue_deg = it->second;
     return model;
   }
-  const bool hex = name.size() == 7 && name[0] == '#' &&
-                   std::all_of(name.begin() + 1, name.end(), [](char c) { return std::isxdigit(c); });
+  const bool hex =
+      name.size() == 7 && name[0] == '#' &&
+      std::all_of(name.begin() + 1, name.end(), [](char c) { return std::isxdigit(c); });
   if (!hex) {
     throw InputError("--color", "",
                      fmt::format("expected auto, red, orange, yellow, green, blue or #rrggbb, got "
@@ -129,9 +131,9 @@ TapeColorModel FitColorModel(const TapeColorModel& prior, const RgbImage& image,
       for (int x = std::max(0, u0 - radius); x <= std::min(image.width - 1, u0 + radius); ++x) {
         float h, s, v;
         RgbToHsv(image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2), &h, &s, &v);
-        // Tape-like: a loose version of the prior (wider hue, lower saturation).
-        if (v < prior.min_value || s < 0.8 * prior.min_saturation) continue;
-        if (HueDistance(h, prior.hue_deg) > 1.5 * prior.hue_tolerance_deg) continue;
+        // Tape by the prior: the window also holds bark, which may be reddish.
+        if (v < prior.min_value || s < prior.min_saturation) continue;
+        if (HueDistance(h, prior.hue_deg) > prior.hue_tolerance_deg) continue;
         hues.push_back(h);
         sats.push_back(s);
         values.push_back(v);
@@ -145,8 +147,8 @@ TapeColorModel FitColorModel(const TapeColorModel& prior, const RgbImage& image,
   std::vector<double> spread;
   spread.reserve(hues.size());
   for (double h : hues) spread.push_back(HueDistance(h, model.hue_deg));
-  model.hue_tolerance_deg = std::clamp(1.5 * Quantile(spread, 0.95), 12.0, 30.0);
-  model.min_saturation = std::clamp(0.75 * Quantile(sats, 0.1), 0.3, prior.min_saturation);
+  model.hue_tolerance_deg = std::clamp(1.5 * Quantile(spread, 0.95), 12.0, prior.hue_tolerance_deg);
+  model.min_saturation = std::clamp(0.6 * Quantile(sats, 0.1), prior.min_saturation, 0.6);
   model.full_saturation = std::clamp(Quantile(sats, 0.5), model.min_saturation + 0.05, 0.95);
   model.min_value = std::clamp(0.5 * Quantile(values, 0.1), 12.0, prior.min_value);
   return model;

@@ -39,10 +39,11 @@ double HueDistance(double a_deg, double b_deg);
 // "orange" or "#rrggbb" set the hue. Throws InputError naming the option otherwise.
 TapeColorModel ColorModelFromName(const std::string& name);
 
-// Refits `prior` to the tape pixels around `pixels` (within `radius` px) of `image`: the hue
-// centre becomes their circular median, the tolerance and thresholds follow their spread (never
-// narrower than the prior's defaults allow). Returns the prior unchanged when fewer than
-// `min_samples` tape-like pixels are found. `samples_found` (optional) gets how many were used.
+// Refits `prior` to the tape pixels (by the prior) around `pixels` (within `radius` px) of
+// `image`: the hue centre becomes their circular median, the tolerance and thresholds follow their
+// spread, never looser than the prior (the windows also hold bark, which may be reddish). Returns
+// the prior unchanged when fewer than `min_samples` tape pixels are found. `samples_found`
+// (optional) gets how many were used.
 TapeColorModel FitColorModel(const TapeColorModel& prior, const RgbImage& image,
                              const std::vector<Eigen::Vector2d>& pixels, int radius,
                              int min_samples = 12, int* samples_found = nullptr);

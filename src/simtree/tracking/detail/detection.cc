@@ -51,7 +51,7 @@ std::vector<double> TapeCoverage(const Blob& blob, const RgbImage& color, BlobDe
 }
 
 double RobustDepth(const DepthImage& depth, double depth_scale_m, const std::vector<int>& pixels,
-                   double edge_m) {
+                   double edge_m, double quantile) {
   const double edge_units = edge_m / depth_scale_m;
   std::vector<double> inner, all;
   for (int i : pixels) {
@@ -63,19 +63,41 @@ double RobustDepth(const DepthImage& depth, double depth_scale_m, const std::vec
   std::vector<double>& use = inner.size() >= 2 ? inner : all;
   if (use.empty()) return 0.0;
   const double first = Median(use);
-  // Drop what is far from the first median (a background pixel seen through a gap), then again.
+  // Drop what is far from the first median (a background pixel seen through a gap), then take
+  // the quantile of the rest.
   std::vector<double> near;
   for (double d : use) {
     if (std::abs(d - first) <= 0.5 * edge_units) near.push_back(d);
   }
-  const double second = near.empty() ? first : Median(near);
+  double second = first;
+  if (!near.empty()) {
+    std::sort(near.begin(), near.end());
+    second = near[std::min(near.size() - 1, static_cast<size_t>(quantile * near.size()))];
+  }
   return second * depth_scale_m;
+}
+
+bool RemeasureNear(const Detection& det, const CameraIntrinsics& intrinsics, double z_axis,
+                   double window_m, Eigen::Vector3d* position) {
+  if (!det.has_depth) return false;
+  const double offset = det.position.z() - det.front_m;
+  std::vector<double> near;
+  for (double d : det.depths_m) {
+    if (std::abs(d + offset - z_axis) <= window_m) near.push_back(d);
+  }
+  // Enough of the tape agrees with the prediction: at least two pixels and a quarter of them.
+  if (near.size() < 2 || 4 * near.size() < det.depths_m.size()) return false;
+  const double front =
+      near[std::min(near.size() - 1, static_cast<size_t>(det.depth_quantile * near.size()))];
+  *position = intrinsics.Unproject(det.center.x(), det.center.y(), front + offset);
+  return true;
 }
 
 Detection MeasureBlob(const Blob& blob, const RgbdImage& image, BlobDetector& detector,
                       const MeasureOptions& options) {
   Detection det;
   det.pixel_count = static_cast<int>(blob.pixels.size());
+  det.source = blob.source;
   const int width = image.color.width;
   const std::vector<double> coverage = TapeCoverage(blob, image.color, detector);
   double sw = 0.0;
@@ -98,7 +120,8 @@ Detection MeasureBlob(const Blob& blob, const RgbdImage& image, BlobDetector& de
   Eigen::Vector2d half = Eigen::Vector2d::Zero();
   Eigen::Vector2d semi;  // the rectangle's half-lengths along its two axes
   for (int k = 0; k < 2; ++k) {
-    semi[k] = options.box_scale * std::sqrt(3.0 * (std::max(0.0, eig.eigenvalues()[k]) + 1.0 / 12.0));
+    semi[k] =
+        options.box_scale * std::sqrt(3.0 * (std::max(0.0, eig.eigenvalues()[k]) + 1.0 / 12.0));
     semi[k] = std::max(semi[k], 0.5);
     half += semi[k] * eig.eigenvectors().col(k).cwiseAbs();
   }
@@ -110,12 +133,19 @@ Detection MeasureBlob(const Blob& blob, const RgbdImage& image, BlobDetector& de
   for (int i : blob.pixels) {
     if (detector.WeightAt(image.color, i) >= kCleanWeight) strong.push_back(i);
   }
-  const double z_surface = RobustDepth(image.depth, k.depth_scale_m,
-                                       strong.size() >= 2 ? strong : blob.pixels, options.edge_m);
+  const double z_surface =
+      RobustDepth(image.depth, k.depth_scale_m, strong.size() >= 2 ? strong : blob.pixels,
+                  options.edge_m, options.depth_quantile);
+  for (int i : strong.size() >= 2 ? strong : blob.pixels) {
+    if (image.depth.pixels[i] != 0) det.depths_m.push_back(image.depth.pixels[i] * k.depth_scale_m);
+  }
+  std::sort(det.depths_m.begin(), det.depths_m.end());
+  det.depth_quantile = options.depth_quantile;
   if (z_surface > 0.0) {
     det.has_depth = true;
     // The smaller half-length spans the branch: its radius in pixels.
     det.radius_m = std::clamp(semi[0] * z_surface / k.fx, 0.002, 0.06);
+    det.front_m = z_surface;
     const double z_axis = z_surface + options.axis_offset_ratio * det.radius_m;
     det.position = k.Unproject(det.center.x(), det.center.y(), z_axis);
   }

@@ -16,8 +16,8 @@ const RgbdImage& FrameLoader::Get(size_t index) {
   if (index >= batch_start_ && index < batch_start_ + batch_.size()) {
     return batch_[index - batch_start_];
   }
-  const size_t count = std::min<size_t>(4 * static_cast<size_t>(threads_),
-                                        stream_.frames.size() - index);
+  const size_t count =
+      std::min<size_t>(4 * static_cast<size_t>(threads_), stream_.frames.size() - index);
   batch_.assign(count, RgbdImage{});
   batch_start_ = index;
   std::exception_ptr error;

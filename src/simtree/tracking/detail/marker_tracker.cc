@@ -13,6 +13,8 @@ constexpr double kForbidden = std::numeric_limits<double>::infinity();
 // A detection this much weaker than the marker's fully visible tape is partly hidden: its box
 // comes from the band's remembered size instead.
 constexpr double kPartialWeight = 0.7;
+// Blobs this close (px at 640 px width) at one depth may be pieces of one tape.
+constexpr double kFragmentPx = 8.0;
 
 }  // namespace
 
@@ -65,35 +67,43 @@ std::vector<SearchWindow> MarkerTracker::Windows() const {
 }
 
 double MarkerTracker::Cost(const Marker& m, const Detection& det) const {
+  // Image distance and depth difference, each against its own gate: the depth of a tape a few
+  // pixels wide is far noisier than its position across the image.
   const bool active = (m.started || first_frame_) && m.coast <= options_.max_coast_frames;
+  const double gate_z = options_.gate_mm / 1000.0;
   if (!m.started || !active) {
     // Found again (or never found yet): near its last pixel or its rest pixel, in the image.
-    const double gate = (active ? options_.search_radius_px : options_.reacquire_radius_px) *
-                        Scale();
-    double d2 = std::min((det.center - m.pixel).norm(), (det.center - m.rest_pixel).norm());
+    const double gate =
+        (active ? options_.search_radius_px : options_.reacquire_radius_px) * Scale();
+    const double d2 = std::min((det.center - m.pixel).norm(), (det.center - m.rest_pixel).norm());
     if (d2 > gate) return kForbidden;
     double cost = (d2 / gate) * (d2 / gate);
     if (m.started && det.has_depth) {
-      const double gate3 = 3.0 * options_.gate_mm / 1000.0;
-      const double d3 = std::min((det.position - m.last_position).norm(),
-                                 (det.position - m.motion.rest()).norm());
-      if (d3 > gate3) return kForbidden;
-      cost += (d3 / gate3) * (d3 / gate3);
+      const double dz = std::min(std::abs(det.position.z() - m.last_position.z()),
+                                 std::abs(det.position.z() - m.motion.rest().z()));
+      if (dz > 3.0 * gate_z) return kForbidden;
+      cost += (dz / (3.0 * gate_z)) * (dz / (3.0 * gate_z));
     }
     return cost;
   }
   const Eigen::Vector3d p = m.motion.position();
   const Eigen::Vector3d sigma = m.motion.position_sigma();
   const double sigma_px = std::max(sigma.x(), sigma.y()) * intrinsics_.fx / std::max(p.z(), 0.1);
-  const double gate2 = options_.gate_px * Scale() + 3.0 * sigma_px;
+  // The gate grows with the prediction's uncertainty while coasting, to at most twice its size.
+  const double gate2 =
+      options_.gate_px * Scale() + std::min(3.0 * sigma_px, options_.gate_px * Scale());
   const double d2 = (det.center - m.pixel).norm();
   if (d2 > gate2) return kForbidden;
   double cost = (d2 / gate2) * (d2 / gate2);
   if (det.has_depth) {
-    const double gate3 = options_.gate_mm / 1000.0 + 3.0 * sigma.norm();
-    const double d3 = (det.position - p).norm();
-    if (d3 > gate3) return kForbidden;
-    cost += (d3 / gate3) * (d3 / gate3);
+    const double gate3 = gate_z + std::min(3.0 * sigma.z(), gate_z);
+    double dz = std::abs(det.position.z() - p.z());
+    Eigen::Vector3d again;
+    if (dz > gate3 && RemeasureNear(det, intrinsics_, p.z(), gate_z, &again)) {
+      dz = std::abs(again.z() - p.z());
+    }
+    if (dz > gate3) return kForbidden;
+    cost += (dz / gate3) * (dz / gate3);
   }
   return cost;
 }
@@ -125,11 +135,51 @@ std::vector<int> MarkerTracker::Assign(const std::vector<Detection>& detections)
       taken[solved[r]] = true;
     }
   }
+  DropNeighbourFragments(detections, &assignment);
   return assignment;
 }
 
-MarkerFrameResult MarkerTracker::Measured(Marker& m, const Detection& det) {
+void MarkerTracker::DropNeighbourFragments(const std::vector<Detection>& detections,
+                                           std::vector<int>* assignment) const {
+  // A marker that was not measured in the last frame may not take a blob lying right beside the
+  // blob of a marker that was, at its depth or split from the same blob: that is likely a piece
+  // of the neighbour's tape (cut by a twig, or its pixels' depths mixed with what is behind), and
+  // taking it is how identities swap. The marker waits until its own tape stands apart.
+  const double near_px = kFragmentPx * Scale();
+  for (size_t i = 0; i < markers_.size(); ++i) {
+    const int d = (*assignment)[i];
+    if (d < 0 || (markers_[i].started && markers_[i].coast == 0)) continue;
+    for (size_t j = 0; j < markers_.size(); ++j) {
+      const int e = (*assignment)[j];
+      if (j == i || e < 0 || !markers_[j].started || markers_[j].coast != 0) continue;
+      const Detection& a = detections[d];
+      const Detection& b = detections[e];
+      const bool beside = (a.center - b.center).norm() <= near_px;
+      const bool same_depth =
+          !a.has_depth || !b.has_depth ||
+          std::abs(a.position.z() - b.position.z()) < options_.split_depth_mm / 1000.0;
+      if (beside && (same_depth || a.source == b.source)) {
+        (*assignment)[i] = -1;
+        break;
+      }
+    }
+  }
+}
+
+MarkerFrameResult MarkerTracker::Measured(Marker& m, const Detection& measured) {
   MarkerFrameResult out;
+  Detection det = measured;
+  if (det.has_depth && m.started && m.coast <= options_.max_coast_frames) {
+    // A depth far from the prediction (a twig in front mixing its depth in): keep the tape
+    // pixels that agree with the prediction.
+    const double gate_z = options_.gate_mm / 1000.0;
+    const double z_pred = m.motion.position().z();
+    Eigen::Vector3d again;
+    if (std::abs(det.position.z() - z_pred) > 0.5 * gate_z &&
+        RemeasureNear(det, intrinsics_, z_pred, 0.5 * gate_z, &again)) {
+      det.position = again;
+    }
+  }
   out.box.marker = m.id;
   out.box.state = MarkerState::kTracked;
   const bool was_lost = m.coast > options_.max_coast_frames;

@@ -37,21 +37,23 @@ class MarkerTracker {
  private:
   struct Marker {
     int id = 0;
-    bool started = false;          // has a 3D state (measured at least once)
+    bool started = false;  // has a 3D state (measured at least once)
     MarkerMotionModel motion;
-    Eigen::Vector2d pixel = Eigen::Vector2d::Zero();  // last known or predicted pixel
+    Eigen::Vector2d pixel = Eigen::Vector2d::Zero();       // last known or predicted pixel
     Eigen::Vector2d rest_pixel = Eigen::Vector2d::Zero();  // first measured pixel
     Eigen::Vector3d last_position = Eigen::Vector3d::Zero();
     Eigen::Vector2d band_size_m = Eigen::Vector2d::Zero();  // box half-extents x depth (px m)
-    double typical_weight = 0.0;   // running tape weight when fully visible
-    int coast = 0;                 // frames since last measured
-    int age = 0;                   // frames since start
+    double typical_weight = 0.0;  // running tape weight when fully visible
+    int coast = 0;                // frames since last measured
+    int age = 0;                  // frames since start
   };
 
   void PredictAll(double dt);
   std::vector<SearchWindow> Windows() const;
   double Cost(const Marker& marker, const Detection& det) const;
   std::vector<int> Assign(const std::vector<Detection>& detections);
+  void DropNeighbourFragments(const std::vector<Detection>& detections,
+                              std::vector<int>* assignment) const;
   MarkerFrameResult Measured(Marker& marker, const Detection& det);
   MarkerFrameResult Unmeasured(Marker& marker);
   double Scale() const { return intrinsics_.width / 640.0; }

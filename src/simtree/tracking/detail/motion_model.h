@@ -12,9 +12,9 @@ namespace simtree::tracking::detail {
 
 struct MotionModelParams {
   MotionModelKind kind = MotionModelKind::kConstantVelocity;
-  double process_noise_mps2 = 8.0;     // white acceleration noise (m/s^2)
-  double noise_xy_m = 0.002;           // measurement noise across the viewing ray (m)
-  double noise_z_m = 0.005;            // along it (m)
+  double process_noise_mps2 = 8.0;       // white acceleration noise (m/s^2)
+  double noise_xy_m = 0.002;             // measurement noise across the viewing ray (m)
+  double noise_z_m = 0.005;              // along it (m)
   double oscillator_frequency_hz = 1.2;  // the oscillator's natural frequency
   double oscillator_damping = 0.05;      // and damping ratio
 };

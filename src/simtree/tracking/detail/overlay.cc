@@ -79,8 +79,8 @@ RgbImage DrawOverlay(const RgbImage& color, const TrackResult& result, size_t in
     cv::rectangle(canvas, Scaled(box.box[0], box.box[1]),
                   Scaled(box.box[0] + box.box[2], box.box[1] + box.box[3]), c, 1);
     cv::putText(canvas, std::to_string(box.marker),
-                Scaled(box.box[0] + box.box[2] + 1.0, box.box[1]), cv::FONT_HERSHEY_SIMPLEX,
-                0.4, c, 1, cv::LINE_AA);
+                Scaled(box.box[0] + box.box[2] + 1.0, box.box[1]), cv::FONT_HERSHEY_SIMPLEX, 0.4, c,
+                1, cv::LINE_AA);
   }
   cv::putText(canvas, fmt::format("frame {}", frame.frame), cv::Point(8, 20),
               cv::FONT_HERSHEY_SIMPLEX, 0.6, cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
@@ -92,10 +92,11 @@ RgbImage DrawOverlay(const RgbImage& color, const TrackResult& result, size_t in
 void EncodeVideo(const fs::path& pattern, double fps, const fs::path& video) {
   const fs::path ffmpeg = FindOnPath("ffmpeg");
   if (ffmpeg.empty()) {
-    throw IoError(fmt::format("{}: the overlay video needs the ffmpeg program (H.264), and it is "
-                              "not on PATH; install ffmpeg or drop --video (the overlay PNG "
-                              "frames are written)",
-                              video.string()));
+    throw IoError(
+        fmt::format("{}: the overlay video needs the ffmpeg program (H.264), and it is "
+                    "not on PATH; install ffmpeg or drop --video (the overlay PNG "
+                    "frames are written)",
+                    video.string()));
   }
   const std::string command = fmt::format(
       "{} -y -loglevel error -framerate {:.6f} -i {} -c:v libx264 -pix_fmt yuv420p "

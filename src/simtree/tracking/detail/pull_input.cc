@@ -43,18 +43,16 @@ size_t CheckInit(const PullStream& stream, const TrackInit& init, const fs::path
   for (size_t i = 0; i < init.markers.size(); ++i) {
     const MarkerPixel& m = init.markers[i];
     const std::string where = fmt::format("markers[{}] (id {})", i, m.id);
-    if (stream.has_markers &&
-        std::none_of(stream.markers.begin(), stream.markers.end(),
-                     [&](const MarkerLink& l) { return l.id == m.id; })) {
+    if (stream.has_markers && std::none_of(stream.markers.begin(), stream.markers.end(),
+                                           [&](const MarkerLink& l) { return l.id == m.id; })) {
       throw InputError(source, where,
                        fmt::format("marker {} is not in {}", m.id,
                                    (stream.directory / "markers.json").string()));
     }
     if (!stream.intrinsics.Contains(m.pixel.x(), m.pixel.y())) {
       throw InputError(source, where,
-                       fmt::format("pixel ({:.1f}, {:.1f}) is outside the {}x{} image",
-                                   m.pixel.x(), m.pixel.y(), stream.intrinsics.width,
-                                   stream.intrinsics.height));
+                       fmt::format("pixel ({:.1f}, {:.1f}) is outside the {}x{} image", m.pixel.x(),
+                                   m.pixel.y(), stream.intrinsics.width, stream.intrinsics.height));
     }
   }
   const auto it = std::find_if(stream.frames.begin(), stream.frames.end(),
