@@ -68,6 +68,12 @@ void RegisterSynth(CLI::App& app) {
                    "tests; far out (0.65) mostly the pulled branch, at its own higher mode")
       ->capture_default_str()
       ->check(CLI::Range(0.05, 0.95));
+  verb->add_option("--init-noise", args->synth.init_click_noise_px,
+                   "pull/init.json (the tracker's start) holds each visible marker's first-frame "
+                   "pixel as a person clicking it gives it: the tape band's centre plus a seeded "
+                   "Gaussian error of this standard deviation per axis (px; 0: exact)")
+      ->capture_default_str()
+      ->check(CLI::Range(0.0, 50.0));
   verb->add_flag("--no-contact-sheet", args->no_sheet, "Do not write contact_sheet.png");
   verb->add_flag("--truth-only", args->synth.truth_only,
                  "Only the tree and its FEM truth: gt/ with tree, species, pull load and modal "

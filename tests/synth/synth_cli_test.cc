@@ -15,6 +15,7 @@
 #include "simtree/core/tree_json.h"
 #include "simtree/io/capture.h"
 #include "simtree/io/ground_truth.h"
+#include "simtree/io/track_init.h"
 #include "simtree/io/trajectories.h"
 #include "simtree/synth/synth.h"
 #include "test_util.h"
@@ -96,6 +97,16 @@ TEST(SynthCli, QuickCaptureIsACaptureFolderWithCompleteGroundTruth) {
   EXPECT_GT(visible, 0);
   // Every tape is seen by the pull camera at rest (placement moves the hidden ones).
   for (const MarkerBox2d& b : boxes[0].markers) EXPECT_TRUE(b.visible) << "marker " << b.id;
+  // pull/init.json: a click within a few px of each visible marker's box centre in frame 0.
+  const TrackInit init = ReadTrackInitJson(dir / "pull" / "init.json");
+  EXPECT_EQ(init.frame, 0);
+  ASSERT_EQ(init.markers.size(), boxes[0].markers.size());
+  for (size_t m = 0; m < init.markers.size(); ++m) {
+    const MarkerBox2d& b = boxes[0].markers[m];
+    EXPECT_EQ(init.markers[m].id, b.id);
+    const Eigen::Vector2d centre(b.box[0] + 0.5 * b.box[2], b.box[1] + 0.5 * b.box[3]);
+    EXPECT_LT((init.markers[m].pixel - centre).norm(), 6.0) << "marker " << b.id;
+  }
   // The pull deflects the tied point visibly and stays in the FEM's linear range.
   const nlohmann::json report = nlohmann::json::parse(test::ReadText(dir / "gt" / "synth.json"));
   EXPECT_GT(report.at("pull_deflection_m").get<double>(), 0.05);
@@ -122,7 +133,8 @@ TEST(SynthCli, SameSeedSameBytes) {
   const fs::path again = QuickCapture(dir / "again", "--threads 1 --no-contact-sheet");
   for (const char* file : {"scans/view_02/depth.png", "scans/view_02/color.png",
                            "pull/depth/000100.png", "pull/color/000100.png", "gt/tree.json",
-                           "gt/trajectories.csv", "gt/modal.json", "gt/markers_2d.json"}) {
+                           "gt/trajectories.csv", "gt/modal.json", "gt/markers_2d.json",
+                           "pull/init.json"}) {
     EXPECT_EQ(test::ReadText(first / file), test::ReadText(again / file)) << file;
   }
 }
@@ -200,7 +212,8 @@ TEST(SynthCli, PullOptionsOutOfRangeAreRefusedBeforeAnythingIsWritten) {
            [](SynthOptions& o) { o.pull_position = 1.0; },
            [](SynthOptions& o) { o.pull_position = std::nan(""); },
            [](SynthOptions& o) { o.max_pull_rotation_rad = 0.0; },
-           [](SynthOptions& o) { o.max_pull_rotation_rad = 1.0; }}) {
+           [](SynthOptions& o) { o.max_pull_rotation_rad = 1.0; },
+           [](SynthOptions& o) { o.init_click_noise_px = -1.0; }}) {
     SynthOptions options;
     options.quick = true;
     change(options);

@@ -17,6 +17,7 @@
 #include "simtree/core/tree_json.h"
 #include "simtree/io/capture.h"
 #include "simtree/io/ground_truth.h"
+#include "simtree/io/track_init.h"
 #include "simtree/io/trajectories.h"
 #include "simtree/synth/detail/camera_rig.h"
 #include "simtree/synth/detail/contact_sheet.h"
@@ -24,6 +25,7 @@
 #include "simtree/synth/detail/fem_modes.h"
 #include "simtree/synth/detail/fem_response.h"
 #include "simtree/synth/detail/fem_truth.h"
+#include "simtree/synth/detail/init_clicks.h"
 #include "simtree/synth/detail/marker_placement.h"
 #include "simtree/synth/detail/rgbd_renderer.h"
 #include "simtree/synth/detail/sensor_model.h"
@@ -44,7 +46,15 @@ double SecondsSince(Clock::time_point start) {
 
 // Seeds of the independent random parts, so changing one part does not reshuffle the others. The
 // tree takes the seed itself: `synth --seed 7` grows GenerateTree(species, 7).
-enum class Stream : uint64_t { kMarkers = 1, kScanRig, kVibration, kScene, kScanNoise, kPullNoise };
+enum class Stream : uint64_t {
+  kMarkers = 1,
+  kScanRig,
+  kVibration,
+  kScene,
+  kScanNoise,
+  kPullNoise,
+  kInitClicks,
+};
 uint64_t SeedFor(uint64_t seed, Stream stream) {
   uint64_t z = seed * 0x9E3779B97F4A7C15ull + static_cast<uint64_t>(stream) * 0xBF58476D1CE4E5B9ull;
   z ^= z >> 31;
@@ -78,6 +88,9 @@ void CheckOptions(const SynthOptions& o) {
   if (!(o.max_pull_rotation_rad > 0 && o.max_pull_rotation_rad <= 0.5)) {
     fail("max_pull_rotation_rad",
          fmt::format("expected (0, 0.5] rad, got {}", o.max_pull_rotation_rad));
+  }
+  if (!(o.init_click_noise_px >= 0 && o.init_click_noise_px <= 50)) {
+    fail("init_click_noise_px", fmt::format("expected 0-50 px, got {}", o.init_click_noise_px));
   }
   if (!(o.min_force_n > 0 && o.max_force_n >= o.min_force_n && std::isfinite(o.max_force_n))) {
     fail("max_force_n", "expected 0 < min_force_n <= max_force_n");
@@ -492,6 +505,10 @@ SynthReport RunSynth(const SynthOptions& options, const fs::path& out) {
   std::vector<MarkerLink> links;
   for (const Marker& m : tree.markers) links.push_back({m.id, m.label, m.parent, std::nullopt});
   WriteMarkersJson(links, pull_dir / "markers.json");
+  WriteTrackInitJson(SimulateInitClicks(boxes, intrinsics.width, intrinsics.height,
+                                        {.noise_px = options.init_click_noise_px,
+                                         .seed = SeedFor(options.seed, Stream::kInitClicks)}),
+                     pull_dir / "init.json");
   report.frames = frame_count;
   report.pull_s = SecondsSince(pull_start);
 

@@ -61,6 +61,10 @@ struct SynthOptions {
   double max_pull_rotation_rad = 0.3;
   double min_force_n = 5.0;
   double max_force_n = 400.0;
+  // pull/init.json, the tracker's start as a person clicking the markers would give it: each
+  // visible marker's tape band centre in the first frame plus a Gaussian error of this standard
+  // deviation per axis, px (0: the exact centres).
+  double init_click_noise_px = 1.5;
   // Also write contact_sheet.png.
   bool contact_sheet = true;
   // Stop after the FEM oracle: write only gt/ (tree, species, pull load, modal truth, synth.json),

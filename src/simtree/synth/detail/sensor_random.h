@@ -19,7 +19,14 @@ inline uint64_t MixBits(uint64_t x) {
 }
 
 // What a random stream is used for; streams of one pixel never share numbers.
-enum class RandomStream : uint64_t { kDepth = 1, kColor = 2, kOutlier = 3, kScene = 4 };
+enum class RandomStream : uint64_t {
+  kDepth = 1,
+  kColor = 2,
+  kOutlier = 3,
+  kScene = 4,
+  kClick = 5,   // pull/init.json's simulated clicks (init_clicks.h)
+  kCamera = 6,  // the camera's colour pipeline (camera_color.h)
+};
 
 class PixelRandom {
  public:
