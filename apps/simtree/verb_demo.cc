@@ -36,11 +36,6 @@ void RegisterDemo(CLI::App& app) {
     const pipeline::DemoResult demo = pipeline::RunDemo(args->output, args->options);
     PrintRunTable(demo.run);
     std::printf("\n%s\n", demo.evaluation.markdown.c_str());
-    if (demo.simulated_tracks) {
-      std::printf(
-          "note: trajectories = the truth with a tracker's errors (the capture has no "
-          "pull/init.json to track from)\n");
-    }
     std::printf("demo done in %.1f s\nopen %s\n", demo.wall_s, demo.report.string().c_str());
   });
 }

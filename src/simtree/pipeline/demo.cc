@@ -6,12 +6,8 @@
 #include <spdlog/spdlog.h>
 
 #include "simtree/core/error.h"
-#include "simtree/io/ground_truth.h"
-#include "simtree/io/trajectories.h"
-#include "simtree/pipeline/detail/tracking_stage.h"
 #include "simtree/report/report.h"
 #include "simtree/synth/synth.h"
-#include "simtree/tracking/tracker_error.h"
 
 namespace fs = std::filesystem;
 
@@ -19,7 +15,7 @@ namespace simtree::pipeline {
 namespace {
 
 bool Synthesise(const fs::path& capture, const DemoOptions& options) {
-  if (fs::exists(capture / "capture.json") && fs::exists(capture / "gt" / "trajectories.csv")) {
+  if (fs::exists(capture / "capture.json") && fs::exists(capture / "pull" / "init.json")) {
     spdlog::info("demo: reusing the capture in {}", capture.string());
     return false;
   }
@@ -34,15 +30,6 @@ bool Synthesise(const fs::path& capture, const DemoOptions& options) {
   const synth::SynthReport report = synth::RunSynth(synth, capture);
   spdlog::info("demo: {}", report.Summary());
   return true;
-}
-
-// The capture's true marker centres with a tracker's errors (a stand-in for tracking).
-fs::path StandInTracks(const fs::path& capture, const fs::path& out) {
-  const fs::path path = out / "tracks.csv";
-  const Trajectories truth = ReadTrajectoriesCsv(capture / "gt" / "trajectories.csv");
-  const std::vector<MarkerFrame2d> visibility = ReadMarkers2d(capture / "gt" / "markers_2d.json");
-  WriteTrajectoriesCsv(tracking::SimulateTrackerError(truth, {}, &visibility), path);
-  return path;
 }
 
 }  // namespace
@@ -70,16 +57,6 @@ DemoResult RunDemo(const fs::path& out, const DemoOptions& options) {
   demo.synthesised = Synthesise(demo.capture, options);
   RunOptions run = options.run;
   run.render = options.render;
-  if (!detail::TrackingBuilt() || !fs::exists(demo.capture / "pull" / "init.json")) {
-    spdlog::warn(
-        "demo: {}: the trajectories are the capture's true marker centres with a tracker's "
-        "errors added ({}/tracks.csv)",
-        detail::TrackingBuilt() ? "the capture has no pull/init.json to start tracking from"
-                                : "tracking is not a stage of this build",
-        out.string());
-    run.tracks = StandInTracks(demo.capture, out);
-    demo.simulated_tracks = true;
-  }
   demo.run = Run(demo.capture, demo.result, run);
   demo.evaluation = eval::EvaluateRun(demo.result, demo.capture);
   eval::WriteRunEvaluation(demo.evaluation, demo.result / "eval");

@@ -33,7 +33,6 @@ struct DemoOptions {
 struct DemoResult {
   std::filesystem::path capture, result, report;
   bool synthesised = false;       // false: the capture was there already
-  bool simulated_tracks = false;  // the trajectories are the truth with a tracker's errors
   RunResult run;
   eval::RunEvaluation evaluation;
   double wall_s = 0.0;

@@ -10,7 +10,6 @@
 #include "simtree/core/atomic_file.h"
 #include "simtree/core/error.h"
 #include "simtree/core/progress.h"
-#include "simtree/pipeline/detail/tracking_stage.h"
 #include "simtree/pipeline/stage.h"
 
 namespace fs = std::filesystem;
@@ -164,11 +163,6 @@ void CheckInputs(const fs::path& capture, const fs::path& result, const RunOptio
   }
   if (!options.tracks.empty() && !fs::is_regular_file(options.tracks)) {
     throw InputError(options.tracks.string(), "", "expected a trajectories.csv file (--tracks)");
-  }
-  if (options.tracks.empty() && !detail::TrackingBuilt()) {
-    throw NotBuiltError(
-        "tracking the pull stream is not built in this version: give the marker trajectories "
-        "with --tracks FILE");
   }
   if (options.tracks.empty() && !fs::is_regular_file(capture / "pull" / "init.json")) {
     throw InputError(capture.string(), "pull/init.json",

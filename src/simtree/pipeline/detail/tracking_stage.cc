@@ -8,8 +8,6 @@
 
 namespace simtree::pipeline::detail {
 
-bool TrackingBuilt() { return true; }
-
 std::string TrackPullStream(const StageContext& context) {
   const std::filesystem::path pull = context.capture_dir / "pull";
   const TrackInit init = ReadTrackInitJson(pull / "init.json");

@@ -8,11 +8,8 @@
 
 namespace simtree::pipeline::detail {
 
-// Whether this build can track the pull stream (the tracking library's Track is linked).
-bool TrackingBuilt();
-
 // Tracks capture/pull/ from pull/init.json into out_dir (trajectories.csv, boxes.csv, overlay
-// frames); returns the summary. Throws NotBuiltError when tracking is not built.
+// frames); returns the summary.
 std::string TrackPullStream(const StageContext& context);
 
 }  // namespace simtree::pipeline::detail
