@@ -45,7 +45,7 @@ void RegisterSynth(CLI::App& app) {
   verb->add_flag("--hard", args->synth.hard,
                  "Harder: a post and a shrub by the tree, more sensor noise, 7 views with wider "
                  "and uneven gaps; in the pull stream leaves swinging in front of markers, a red "
-                 "box in view and a drop of the light");
+                 "box in view, a drop of the light and motion blur at the swing's fastest");
   verb->add_flag("--clean-color", args->synth.clean_color,
                  "The pull stream's colour as rendered. Default: as a real camera delivers it "
                  "(white balance a little off, auto-exposure drifting, sensor noise, slight "

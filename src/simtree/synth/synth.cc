@@ -361,6 +361,65 @@ RenderResult RenderPullFrame(const SensorScene& scene, const SensorModel& sensor
   return result;
 }
 
+// --hard: the frames where some marker moves more than `min_px` a frame in the image (the swing's
+// fastest, after the release), which are rendered with motion blur.
+std::vector<bool> FastFrames(const Tree& tree, const std::vector<TreePose>& poses,
+                             const Eigen::Isometry3d& camera_from_world, const CameraIntrinsics& k,
+                             double min_px = 5.0) {
+  const int n = static_cast<int>(poses.size());
+  std::vector<bool> fast(n, false);
+  const auto pixel = [&](int i, const Marker& m) {
+    return k.Project(camera_from_world * poses[i].PointAt(tree, m.branch, m.arc_length));
+  };
+  for (int i = 1; i + 1 < n; ++i) {
+    for (const Marker& m : tree.markers) {
+      if (0.5 * (pixel(i + 1, m) - pixel(i - 1, m)).norm() > min_px) fast[i] = true;
+    }
+  }
+  return fast;
+}
+
+TreePose Lerp(const TreePose& a, const TreePose& b, double w) {
+  TreePose out = a;
+  for (int k = 0; k < out.node_count(); ++k) {
+    out.positions()[k] += w * (b.positions()[k] - a.positions()[k]);
+  }
+  return out;
+}
+
+// Motion blur over an exposure of half a frame centred on the frame's time: the colour at its two
+// ends (the pose a quarter of the way to the previous and to the next frame, the leaves where they
+// are then), to be averaged with the frame's own. Leaves the scene in the last end's pose.
+std::vector<RgbImage> RenderExposureEnds(SensorScene& scene, const SensorModel& sensor,
+                                         const Eigen::Isometry3d& camera,
+                                         const std::vector<TreePose>& poses,
+                                         const PullFrameRender& frame, double frame_interval_s,
+                                         const std::vector<LeafOccluder>& leaves) {
+  std::vector<RgbImage> ends;
+  for (const int side : {-1, 1}) {
+    scene.SetPose(Lerp(poses[frame.frame], poses[frame.frame + side], 0.25));
+    RenderOptions render;
+    render.seed = frame.seed;
+    render.frame = frame.frame;
+    render.marker_boxes = false;
+    RenderResult r = RenderRgbd(scene, sensor, camera, render);
+    DrawLeafOccluders(leaves, frame.time_s + 0.25 * side * frame_interval_s, r.image.color,
+                      r.image.depth, r.labels);
+    ends.push_back(std::move(r.image.color));
+  }
+  return ends;
+}
+
+// `color` becomes the mean of itself and `others` (same size).
+void AverageColor(const std::vector<RgbImage>& others, RgbImage& color) {
+  const double n = 1.0 + static_cast<double>(others.size());
+  for (size_t p = 0; p < color.pixels.size(); ++p) {
+    double sum = color.pixels[p];
+    for (const RgbImage& o : others) sum += o.pixels[p];
+    color.pixels[p] = static_cast<uint8_t>(sum / n + 0.5);
+  }
+}
+
 // Places the markers, then moves those the pull camera does not see at rest (a person tapes what
 // they see on the tablet): their sites are excluded and the placement runs again, a few rounds at
 // most.
@@ -547,21 +606,33 @@ PullStreamOutput RenderPullStream(const SynthOptions& options, const Tree& tree,
     Progress progress("synth: pull stream", frame_count, "frames");
     oneapi::tbb::task_group writers;
     std::vector<LeafOccluder> leaves;  // --hard: planned on the first frame
+    const std::vector<bool> blurred =
+        options.hard ? FastFrames(tree, frame_poses, camera_from_world, sensor.Intrinsics())
+                     : std::vector<bool>(frame_count, false);
+    if (options.hard) {
+      spdlog::info("synth: {} of {} pull frames with motion blur (a marker moves > 5 px a frame)",
+                   std::count(blurred.begin(), blurred.end(), true), frame_count);
+    }
     for (int i = 0; i < frame_count; ++i) {
-      scene.SetPose(frame_poses[i]);
       if (frame_times[i] < pull.release_s) {
         scene.SetRope(RopeSegment{pull.branch, pull.arc_length, pull.anchor});
       } else {
         scene.SetRope(std::nullopt);
       }
+      const PullFrameRender render{.seed = SeedFor(options.seed, Stream::kPullNoise),
+                                   .frame = i,
+                                   .time_s = frame_times[i],
+                                   .leaves = options.hard,
+                                   .leaf_seed = SeedFor(options.seed, Stream::kLeaves)};
+      std::vector<RgbImage> streak;  // --hard, at the swing's fastest: the exposure's ends
+      if (blurred[i]) {
+        streak = RenderExposureEnds(scene, sensor, pull_camera, frame_poses, render,
+                                    1.0 / options.fps, leaves);
+      }
+      scene.SetPose(frame_poses[i]);
       auto result = std::make_shared<RenderResult>(
-          RenderPullFrame(scene, sensor, pull_camera,
-                          {.seed = SeedFor(options.seed, Stream::kPullNoise),
-                           .frame = i,
-                           .time_s = frame_times[i],
-                           .leaves = options.hard,
-                           .leaf_seed = SeedFor(options.seed, Stream::kLeaves)},
-                          leaves));
+          RenderPullFrame(scene, sensor, pull_camera, render, leaves));
+      if (!streak.empty()) AverageColor(streak, result->image.color);
       if (!options.clean_color) color_camera.Apply(frame_times[i], i, result->image.color);
       // Ground truth: the marker centres on the deformed branch axis, camera frame.
       std::vector<Eigen::Vector3d> centres;
@@ -577,7 +648,7 @@ PullStreamOutput RenderPullStream(const SynthOptions& options, const Tree& tree,
         tiles.push_back(
             {fmt::format("pull frame {} ({})", i, what), result->image.color, result->image.depth});
       }
-      frame_poses[i] = TreePose();  // rendered: free its memory
+      if (i > 0) frame_poses[i - 1] = TreePose();  // rendered (and blurred with): free it
       writers.run([&, i, result] {
         out.frames[i] = WritePullFrame(pull_dir, i, frame_times[i], result->image.color,
                                        result->image.depth, options.png);
