@@ -30,9 +30,10 @@ build: configure
 cli: configure
 	cmake --build $(BUILD) -j $(JOBS) --target simtree
 
-# The main job on the built-in default: the authors' tree01 with its parameters, to JSON + mesh.
+# The main job end to end: synth of the default species into out/demo/capture, `simtree run` into
+# out/demo/result, `simtree eval` against the truth; prints the path of report.html.
 demo: cli
-	@scripts/demo.sh $(SIMTREE) $(SHARED)/data out/demo
+	@scripts/demo.sh $(SIMTREE) out/demo
 
 # Every test (fast and end-to-end) in the Release build.
 test: build

@@ -1,19 +1,13 @@
 #!/usr/bin/env bash
-# The demo: the paper's authors' tree01 with its material parameters becomes a simtree JSON tree
-# and a generalized-cylinder mesh, simtree prints what it holds, then pulls a first-level branch
-# with a rope, releases it and writes the animation (glTF for Blender / three.js) and marker tracks.
-# usage: scripts/demo.sh <simtree binary> <shared data folder> <output folder>
+# The demo: `simtree demo` makes a small synthetic capture of the default species (4 views, a 7 s
+# pull test) in <out>/capture, runs the whole pipeline on it into <out>/result (preprocess,
+# register, reconstruct, track, identify, build, simulate, render, report), scores every stage
+# against the capture's truth (<out>/result/eval/) and prints the path of the report to open.
+# A second run reuses the capture and every stage that has not changed.
+# usage: scripts/demo.sh <simtree binary> <output folder>
 set -euo pipefail
-simtree=$1 data=$2 out=$3
-demo="$data/authors-demo"
-[ -f "$demo/tree_model/tree01.txt" ] || { echo "demo: $demo/tree_model/tree01.txt not found (the shared data folder)" >&2; exit 1; }
+simtree=$1 out=$2
 mkdir -p "$out"
-"$simtree" convert "$demo/tree_model/tree01.txt" "$out/tree01.json" --params "$demo/tree_parameters.txt"
-"$simtree" mesh "$out/tree01.json" --out "$out/tree01.ply"
-"$simtree" mesh "$out/tree01.json" --out "$out/tree01.obj"
-"$simtree" info "$out/tree01.json"
-# Pull branch 1 (a first-level branch) at its tip with 100 N, hold from 1 s, let go at 3 s.
-"$simtree" simulate "$out/tree01.json" --pull 1 --force 100 --hold 1 --release 3 --duration 10 \
-  --out "$out/pull"
-echo "demo: wrote $out/tree01.json, $out/tree01.ply (Open3D, CloudCompare, MeshLab) and $out/tree01.obj (Blender)"
-echo "demo: the pull test is in $out/pull/: animation.glb (Blender, three.js), markers.csv, nodes.bin"
+start=$(date +%s)
+"$simtree" demo --out "$out"
+echo "demo: $(( $(date +%s) - start )) s; open $out/result/report.html in a browser"

@@ -24,7 +24,8 @@ int main(int argc, char** argv) {
       "ratios).\n\n"
       "Pipeline: synth | scans -> preprocess -> register -> reconstruct -> static tree\n"
       "          pull-test stream -> track -> identify -> materials\n"
-      "          static tree + materials -> build -> simulate / view / render",
+      "          static tree + materials -> build -> simulate / view / render\n"
+      "          run: all of it on a capture folder; demo: synth + run + eval",
       "simtree"};
   app.set_version_flag("--version", std::string("simtree ") + SIMTREE_VERSION);
   std::string log_level = "info";
@@ -51,6 +52,7 @@ int main(int argc, char** argv) {
   RegisterView(app);
   RegisterRender(app);
   RegisterRun(app);
+  RegisterDemo(app);
   RegisterEval(app);
   RegisterReport(app);
   RegisterConvert(app);

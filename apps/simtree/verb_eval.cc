@@ -130,11 +130,15 @@ void RegisterEvalIdentification(CLI::App& eval) {
 
 }  // namespace
 
+void RegisterEvalTracking(CLI::App& eval);  // verb_eval_tracking.cc
+
 void RegisterEval(CLI::App& app) {
   CLI::App* eval = app.add_subcommand(
       "eval", "Score a stage's output against the ground truth of a synth capture (gt/)");
-  eval->require_subcommand(1);
+  eval->require_subcommand(0, 1);
   RegisterEvalIdentification(*eval);
+  RegisterEvalTracking(*eval);
+  AddEvalRun(*eval);
 }
 
 }  // namespace simtree::cli

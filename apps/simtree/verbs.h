@@ -18,6 +18,8 @@ void RegisterView(CLI::App& app);
 void RegisterRender(CLI::App& app);
 void RegisterRun(CLI::App& app);
 void RegisterEval(CLI::App& app);
+void AddEvalRun(CLI::App& eval);  // `eval RESULT --gt CAPTURE` (verb_eval_run.cc)
+void RegisterDemo(CLI::App& app);
 void RegisterReport(CLI::App& app);
 void RegisterConvert(CLI::App& app);
 void RegisterMesh(CLI::App& app);

@@ -1,0 +1,60 @@
+#pragma once
+// The capture's pull test estimated on the simulation-ready tree, so it can be replayed: a point
+// force at one point of one branch, fitted by least squares to the markers' tracked displacements
+// while the rope was held (the tree's static response to a unit force along x, y and z at each
+// candidate point, from TreeDynamics::SettleStatic), the hold's start from the tracks and the
+// release from identification.
+
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "simtree/core/tree.h"
+#include "simtree/dynamics/simulate.h"
+#include "simtree/io/trajectories.h"
+
+namespace simtree::pipeline::detail {
+
+struct PullFitOptions {
+  double rest_s = 0.3;            // s from the record's start averaged for the rest pose (> 0)
+  double held_window_s = 0.3;     // s averaged for the held pose, before the release (> 0)
+  double release_margin_s = 0.1;  // s before the release left out of the held window (>= 0)
+  int arc_samples = 6;            // candidate rope points per branch (>= 1)...
+  double min_arc_share = 0.2;     // ... from this share of its length from its base [0, 1) ...
+  double max_arc_share = 0.95;    // ... to this share (> min_arc_share, <= 1)
+  // A rope point needing more than this to explain the displacements is no pull a person makes
+  // (a point near a stiff base explains anything with a huge force).
+  double max_force_n = 1000.0;  // N, > 0
+  // Nor one whose own point would move more than this many times the largest held displacement
+  // of a marker (a thin twig pulled hard, its motion seen by no marker).
+  double max_point_displacement_factor = 1.5;  // > 0
+  int max_level = 2;                           // deepest branch level a rope is tried on (>= 0)
+  double anchor_distance_m = 20.0;  // m: the replayed rope's anchor, along the force (> 0)
+  double hold_fraction = 0.95;  // the hold starts when the most-moved marker has this share (0, 1]
+
+  // Throws InputError ("pull fit options", the field) for a value out of range.
+  void Validate() const;
+};
+
+struct PullFit {
+  int branch = 0;
+  double arc_length = 0.0;                          // m from the branch base
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();  // the rope's point at rest (world)
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // N, world
+  double residual_rms_m = 0.0;  // of the markers' held displacements against the fit
+  double observed_rms_m = 0.0;  // of the held displacements themselves
+  int markers = 0;              // markers the fit used
+  int candidates = 0;           // rope points tried
+  double hold_s = 0.0, release_s = 0.0;
+
+  // The schedule that replays it (force mode, anchor far along the force).
+  dynamics::PullSchedule Schedule(double anchor_distance_m = 20.0) const;
+};
+
+// `tree`: simulation-ready, with markers (their ids those of `tracks`); `excluded`: marker ids
+// the fit must not use. Throws InputError when no marker can be used or nothing moved.
+PullFit FitPull(const Tree& tree, const Trajectories& tracks,
+                const Eigen::Isometry3d& world_from_camera, double release_s,
+                const std::vector<int>& excluded, const PullFitOptions& options = {});
+
+}  // namespace simtree::pipeline::detail

@@ -1,0 +1,51 @@
+#pragma once
+// The tape's colour model: a hue interval (an angle, so red's interval spans the wrap at 0/360
+// degrees), a least saturation and a least brightness. Hue and saturation barely change when the
+// tape is shaded or lit by the sun, so the model holds under both; brightness only rejects pixels
+// too dark to have a hue. `Weight` grades a pixel from 0 (not tape) to 1 (all tape), so a pixel
+// half covered by tape counts about half: what sub-pixel centres and band boxes are made from.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "simtree/io/image_io.h"
+
+namespace simtree::tracking::detail {
+
+struct TapeColorModel {
+  double hue_deg = 0.0;             // centre of the hue interval (degrees, 0 = red)
+  double hue_tolerance_deg = 22.0;  // half-width of the interval (degrees)
+  double min_saturation = 0.45;     // (max - min) / max of R, G, B
+  double full_saturation = 0.65;    // saturation from which a pixel counts as all tape
+  double min_value = 28.0;          // max of R, G, B (0-255)
+
+  // True when the pixel is tape (hue inside the interval, saturated and bright enough).
+  bool Contains(uint8_t r, uint8_t g, uint8_t b) const;
+  // 0 (not tape) to 1 (all tape): saturation graded from 0.7 min_saturation to full_saturation,
+  // hue graded over 10 degrees outside the interval.
+  float Weight(uint8_t r, uint8_t g, uint8_t b) const;
+  std::string Describe() const;
+};
+
+// Hue in degrees [0, 360), saturation [0, 1] and value [0, 255] of an RGB pixel.
+void RgbToHsv(uint8_t r, uint8_t g, uint8_t b, float* hue_deg, float* saturation, float* value);
+// Smallest angle between two hues (degrees, 0-180).
+double HueDistance(double a_deg, double b_deg);
+
+// The starting model for `--color`: "auto" and "red" are red; "green", "blue", "yellow",
+// "orange" or "#rrggbb" set the hue. Throws InputError naming the option otherwise.
+TapeColorModel ColorModelFromName(const std::string& name);
+
+// Refits `prior` to the tape pixels (by the prior) around `pixels` (within `radius` px) of
+// `image`: the hue centre becomes their circular median, the tolerance and thresholds follow their
+// spread, never looser than the prior (the windows also hold bark, which may be reddish). Returns
+// the prior unchanged when fewer than `min_samples` tape pixels are found. `samples_found`
+// (optional) gets how many were used.
+TapeColorModel FitColorModel(const TapeColorModel& prior, const RgbImage& image,
+                             const std::vector<Eigen::Vector2d>& pixels, int radius,
+                             int min_samples = 12, int* samples_found = nullptr);
+
+}  // namespace simtree::tracking::detail

@@ -1,0 +1,62 @@
+#include "simtree/tracking/detail/detection.h"
+
+#include <gtest/gtest.h>
+
+#include "drawn_stream.h"
+
+namespace simtree::tracking::detail {
+namespace {
+
+double Iou(const std::array<double, 4>& a, const std::array<double, 4>& b) {
+  const double w = std::min(a[0] + a[2], b[0] + b[2]) - std::max(a[0], b[0]);
+  const double h = std::min(a[1] + a[3], b[1] + b[3]) - std::max(a[1], b[1]);
+  if (w <= 0 || h <= 0) return 0.0;
+  return w * h / (a[2] * a[3] + b[2] * b[3] - w * h);
+}
+
+std::vector<Detection> DetectAll(const RgbdImage& image) {
+  BlobDetector detector(ColorModelFromName("red"), BlobDetectorOptions{});
+  const SearchWindow all{0, 0, image.color.width, image.color.height};
+  std::vector<Detection> out;
+  for (const Blob& b : detector.Find(image, {all})) {
+    out.push_back(MeasureBlob(b, image, detector, MeasureOptions{}));
+  }
+  return out;
+}
+
+TEST(Detection, SubPixelCentreBoxAndAxisDepthOfADrawnBand) {
+  test::DrawnStream s;
+  const Eigen::Vector3d p(0.0123, -0.0371, 1.6);  // projects between pixel centres
+  const RgbdImage image = test::DrawFrame(s, {p});
+  const std::vector<Detection> found = DetectAll(image);
+  ASSERT_EQ(found.size(), 1u);
+  const Detection& d = found[0];
+  const Eigen::Vector2d truth = s.intrinsics.Project(p);
+  EXPECT_LT((d.center - truth).norm(), 0.15) << d.center.transpose() << " vs " << truth.transpose();
+  EXPECT_GT(Iou(d.Box(), test::DrawnBox(s, p)), 0.75);
+  ASSERT_TRUE(d.has_depth);
+  EXPECT_LT((d.position - p).norm(), 0.004);
+}
+
+TEST(Detection, CrossingBandsAtDifferentDepthsSplitIntoTwo) {
+  test::DrawnStream s;
+  const Eigen::Vector3d near(0.0, 0.0, 1.5), far(0.01, 0.03, 1.9);  // overlapping in the image
+  const RgbdImage image = test::DrawFrame(s, {near, far});
+  const std::vector<Detection> found = DetectAll(image);
+  ASSERT_EQ(found.size(), 2u);
+  std::vector<double> z = {found[0].position.z(), found[1].position.z()};
+  std::sort(z.begin(), z.end());
+  EXPECT_NEAR(z[0], near.z(), 0.01);
+  EXPECT_NEAR(z[1], far.z(), 0.01);
+}
+
+TEST(Detection, RobustDepthIgnoresFlyingPixelsAndHoles) {
+  DepthImage depth(5, 1);
+  depth.pixels = {1500, 1502, 0, 1501, 3000};  // a hole and a background pixel
+  const double z = RobustDepth(depth, 0.001, {0, 1, 2, 3, 4}, 0.03);
+  EXPECT_NEAR(z, 1.501, 0.0015);
+  EXPECT_EQ(RobustDepth(depth, 0.001, {2}, 0.03), 0.0);
+}
+
+}  // namespace
+}  // namespace simtree::tracking::detail
