@@ -44,7 +44,12 @@ void RegisterSynth(CLI::App& app) {
                  "A small fast scene for tests: smaller tree, 4 views, 5 s stream");
   verb->add_flag("--hard", args->synth.hard,
                  "Harder: a post and a shrub by the tree, more sensor noise, 7 views with wider "
-                 "and uneven gaps");
+                 "and uneven gaps; in the pull stream leaves swinging in front of markers, a red "
+                 "box in view, a drop of the light and motion blur at the swing's fastest");
+  verb->add_flag("--clean-color", args->synth.clean_color,
+                 "The pull stream's colour as rendered. Default: as a real camera delivers it "
+                 "(white balance a little off, auto-exposure drifting, sensor noise, slight "
+                 "defocus, MJPEG compression; --hard adds an exposure change)");
   verb->add_option("--views", args->synth.views, "Static views (default 10; hard 7; quick 4)")
       ->check(CLI::Range(1, 72));
   verb->add_option("--duration", args->synth.duration_s,

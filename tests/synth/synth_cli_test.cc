@@ -131,10 +131,10 @@ TEST(SynthCli, SameSeedSameBytes) {
   const fs::path dir = test::TempDir();
   const fs::path first = QuickCapture(dir / "first");
   const fs::path again = QuickCapture(dir / "again", "--threads 1 --no-contact-sheet");
-  for (const char* file : {"scans/view_02/depth.png", "scans/view_02/color.png",
-                           "pull/depth/000100.png", "pull/color/000100.png", "gt/tree.json",
-                           "gt/trajectories.csv", "gt/modal.json", "gt/markers_2d.json",
-                           "pull/init.json"}) {
+  for (const char* file :
+       {"scans/view_02/depth.png", "scans/view_02/color.png", "pull/depth/000100.png",
+        "pull/color/000100.png", "gt/tree.json", "gt/trajectories.csv", "gt/modal.json",
+        "gt/markers_2d.json", "pull/init.json"}) {
     EXPECT_EQ(test::ReadText(first / file), test::ReadText(again / file)) << file;
   }
 }
@@ -220,6 +220,32 @@ TEST(SynthCli, PullOptionsOutOfRangeAreRefusedBeforeAnythingIsWritten) {
     EXPECT_THROW(RunSynth(options, dir), InputError);
     EXPECT_FALSE(fs::exists(dir));
   }
+}
+
+// --hard: leaves hide markers for a while (visible false in some frames, never all of them), but
+// not in the first frame, so init.json holds every marker; clean colour differs from the
+// camera's only in colour.
+TEST(SynthCli, HardStreamHidesMarkersBehindLeavesForAWhile) {
+  const fs::path tmp = test::TempDir();  // emptied on every call: once
+  const fs::path dir = QuickCapture(tmp / "hard", "--hard --no-contact-sheet");
+  const std::vector<MarkerFrame2d> boxes = ReadMarkers2d(dir / "gt" / "markers_2d.json");
+  ASSERT_FALSE(boxes.empty());
+  int hidden_for_a_while = 0;
+  for (size_t m = 0; m < boxes[0].markers.size(); ++m) {
+    int visible = 0;
+    for (const MarkerFrame2d& f : boxes) visible += f.markers[m].visible;
+    hidden_for_a_while += visible > 0 && visible < static_cast<int>(boxes.size()) - 5;
+  }
+  EXPECT_GE(hidden_for_a_while, 1);
+  EXPECT_EQ(ReadTrackInitJson(dir / "pull" / "init.json").markers.size(), boxes[0].markers.size());
+  const fs::path clean =
+      QuickCapture(tmp / "hard_clean", "--hard --clean-color --no-contact-sheet");
+  EXPECT_EQ(test::ReadText(dir / "pull/depth/000100.png"),
+            test::ReadText(clean / "pull/depth/000100.png"));
+  EXPECT_EQ(test::ReadText(dir / "gt/markers_2d.json"),
+            test::ReadText(clean / "gt/markers_2d.json"));
+  EXPECT_NE(test::ReadText(dir / "pull/color/000100.png"),
+            test::ReadText(clean / "pull/color/000100.png"));
 }
 
 TEST(SynthCli, HelpTeachesAndListsSpecies) {

@@ -33,8 +33,13 @@ struct SynthOptions {
   // A small, fast scene for tests: a smaller tree, 4 views, a 5 s pull stream.
   bool quick = false;
   // More occlusion (a post and a shrub by the tree), more sensor noise, fewer and wider-spaced
-  // views.
+  // views; in the pull stream three leaves swinging in front of markers, a red box in view, the
+  // light dropping by 0.8 EV after the release and motion blur where markers move fast
+  // (docs/synth.md).
   bool hard = false;
+  // The pull stream's colour as the renderer makes it, without the camera's pipeline (white
+  // balance, auto-exposure drift, sensor noise, defocus, MJPEG; detail/camera_color.h).
+  bool clean_color = false;
   int views = 0;            // 0: 10 (hard: 7, quick: 4)
   double duration_s = 0.0;  // pull stream length; 0: 15 s (quick: 5 s)
   double fps = 30.0;
