@@ -1,5 +1,7 @@
 #include "simtree/report/report.h"
 
+#include <unistd.h>
+
 #include <regex>
 
 #include <gtest/gtest.h>
@@ -13,10 +15,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The folder made once for the suite (a simulation and an identification: about a second).
+// The folder made once per test process (a simulation and an identification: about a second).
+// CTest runs each test in its own process, several at once: the folder is the process's own, so
+// one test never reads it while another rewrites it.
 const fs::path& FullResult() {
   static const fs::path root = [] {
-    const fs::path dir = fs::path(SIMTREE_TEST_TMP_DIR) / "full_result";
+    const fs::path dir =
+        fs::path(SIMTREE_TEST_TMP_DIR) / ("process_" + std::to_string(::getpid())) / "full_result";
     fs::remove_all(dir);
     fs::create_directories(dir);
     test::WriteResultFolder(dir);
