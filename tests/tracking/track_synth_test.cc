@@ -1,7 +1,9 @@
-// End to end on a synth pull stream: synth (the CLI) makes a short capture, Track follows its
-// markers from the true boxes of frame 0, and the scores against the truth hold what the tracker
-// reaches today (docs/tracking.md): issue 20 asks >= 98% tracked, no swap (both met here) and a
-// median 3D error <= 5 mm (6.3 mm on this stream: guarded at 7 mm until the depth is better).
+// End to end on synth pull streams: synth (the CLI) makes a short capture, Track follows its
+// markers from synth's simulated first-frame clicks (pull/init.json), and the scores against the
+// truth hold what the tracker reaches today (docs/tracking.md). Issue 20 asks >= 98% tracked, no
+// swap and a median 3D error <= 5 mm: on clean colour the first two are met (6.3 mm: guarded at
+// 7 mm until the depth is better); on the camera colour synth renders by default the tracker
+// reaches 83% and 9.2 mm (guarded at 80% and 10 mm).
 #include <filesystem>
 
 #include <gtest/gtest.h>
@@ -17,40 +19,41 @@ namespace fs = std::filesystem;
 namespace simtree::tracking {
 namespace {
 
-// The init a person would click: each marker's true box centre in frame 0 (synth's truth; never
-// used by Track itself).
-TrackInit InitFromTruth(const fs::path& capture) {
-  const std::vector<MarkerFrame2d> truth = ReadMarkers2d(capture / "gt" / "markers_2d.json");
-  TrackInit init;
-  init.frame = truth[0].frame;
-  for (const MarkerBox2d& m : truth[0].markers) {
-    if (m.box[2] <= 0.0 || m.box[3] <= 0.0) continue;
-    init.markers.push_back(
-        {m.id, Eigen::Vector2d(m.box[0] + 0.5 * m.box[2], m.box[1] + 0.5 * m.box[3])});
-  }
-  return init;
-}
+struct StreamCase {
+  const char* name;
+  const char* synth_args;  // beyond species, seed, duration and views
+  double min_tracked_fraction;
+  double max_median_error_mm;
+};
 
-TEST(TrackSynth, ShortStreamTrackedWithoutSwaps) {
+class TrackSynth : public ::testing::TestWithParam<StreamCase> {};
+
+TEST_P(TrackSynth, ShortStreamTrackedWithoutSwaps) {
+  const StreamCase& c = GetParam();
   Progress::SetEnabled(false);
   const fs::path capture = test::TempDir() / "capture";
-  const test::CliResult made = test::RunCli(
-      "-q synth --species acer_rubrum --seed 2 --duration 5.5 --views 1 --no-contact-sheet "
-      "--out " +
-      capture.string());
+  const test::CliResult made =
+      test::RunCli(std::string("-q synth --species acer_rubrum --seed 2 --duration 5.5 --views 1 "
+                               "--no-contact-sheet ") +
+                   c.synth_args + " --out " + capture.string());
   ASSERT_EQ(made.exit_code, 0) << made.output;
-  const fs::path init_path = capture / "pull" / "init.json";
-  const TrackInit init =
-      fs::exists(init_path) ? ReadTrackInitJson(init_path) : InitFromTruth(capture);
+  const TrackInit init = ReadTrackInitJson(capture / "pull" / "init.json");
   const TrackResult result = Track(capture / "pull", init, TrackOptions{});
   const eval::TrackingScores s = eval::ScoreTracking(
       result.boxes, result.trajectories, ReadMarkers2d(capture / "gt" / "markers_2d.json"),
       ReadTrajectoriesCsv(capture / "gt" / "trajectories.csv"));
-  EXPECT_GE(s.tracked_fraction, 0.98);
-  EXPECT_LE(s.median_error_mm, 7.0);
+  EXPECT_GE(s.tracked_fraction, c.min_tracked_fraction);
+  EXPECT_LE(s.median_error_mm, c.max_median_error_mm);
   EXPECT_EQ(s.swap_events, 0);
   EXPECT_TRUE(result.never_found.empty());
 }
+
+INSTANTIATE_TEST_SUITE_P(Colour, TrackSynth,
+                         ::testing::Values(StreamCase{"clean", "--clean-color", 0.98, 7.0},
+                                           StreamCase{"camera", "", 0.80, 10.0}),
+                         [](const ::testing::TestParamInfo<StreamCase>& p) {
+                           return std::string(p.param.name);
+                         });
 
 }  // namespace
 }  // namespace simtree::tracking
