@@ -142,7 +142,7 @@ TEST(ReconstructionMetrics, NonsenseOptionsAreRefusedByName) {
         try {
           ScoreAgainstTruth(Truth(), Truth(), {.found_share = 1.5});
         } catch (const InputError& e) {
-          EXPECT_STREQ(e.what(), "options: found_share: expected within [0, 1], got 1.5");
+          EXPECT_STREQ(e.what(), "options: found_share: expected a value in [0, 1], got 1.5");
           throw;
         }
       },

@@ -69,7 +69,7 @@ TEST(DepthToCloud, NonsenseOptionsAreRefused) {
   using Options = DepthToCloudOptions;
   EXPECT_EQ(test::RefusedField(Options{}), "");
   EXPECT_EQ(test::RefusedField(Options{.stride = 0}), "stride");
-  EXPECT_EQ(test::RefusedField(Options{.min_depth_m = 7.0}), "min_depth_m");  // beyond the max
+  EXPECT_EQ(test::RefusedField(Options{.min_depth_m = 7.0}), "max_depth_m");  // below the min
   EXPECT_EQ(test::RefusedField(Options{.flying_jump_share = -0.1}), "flying_jump_share");
   EXPECT_THROW(DepthToCloud(Flat(9, 7, 2000), Options{.stride = 0}), InputError);
 }

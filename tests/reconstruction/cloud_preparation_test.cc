@@ -109,7 +109,7 @@ TEST(CloudPreparation, RefusesBadOptionsBeforeLookingAtThePoints) {
   EXPECT_THAT(MessageOf(Trunk(), {.max_height_m = 60.0, .min_height_m = 70.0}),
               HasSubstr("max_height_m: expected >= min_height_m (70), got 60"));
   EXPECT_THAT(MessageOf(Trunk(), {.extent_trim = 0.7}),
-              HasSubstr("extent_trim: expected within [0, 0.5], got 0.7"));
+              HasSubstr("extent_trim: expected a value in [0, 0.5], got 0.7"));
 }
 
 TEST(CloudPreparation, IgnoresAFewFarOutliersWhenMeasuring) {

@@ -193,7 +193,7 @@ TEST(Reconstruct, NonsenseOptionsAreRefusedByName) {
   EXPECT_EQ(message([](auto& o) { o.max_working_points = 0; }),
             "options: max_working_points: expected >= 1, got 0");
   EXPECT_EQ(message([](auto& o) { o.ground.search_share = 1.5; }),
-            "options: ground.search_share: expected within [0, 1], got 1.5");
+            "options: ground.search_share: expected a value in [0, 1], got 1.5");
   EXPECT_EQ(message([](auto& o) { o.trunk.slices = 0; }),
             "options: trunk.slices: expected >= 1, got 0");
   EXPECT_EQ(message([](auto& o) { o.trunk.max_radius_m = 0.001; }),
@@ -201,11 +201,11 @@ TEST(Reconstruct, NonsenseOptionsAreRefusedByName) {
   EXPECT_EQ(message([](auto& o) { o.trunk_fit_max_m = 0.1; }),
             "options: trunk_fit_max_m: expected >= trunk_fit_min_m (0.3), got 0.1");
   EXPECT_EQ(message([&](auto& o) { o.colonization.direction_smoothing = nan; }),
-            "options: colonization.direction_smoothing: expected within [0, 1], got nan");
+            "options: colonization.direction_smoothing: expected a value in [0, 1], got nan");
   EXPECT_EQ(message([](auto& o) { o.pruning.passes = -1; }),
             "options: pruning.passes: expected >= 0, got -1");
   EXPECT_EQ(message([](auto& o) { o.smoothing.weight = 2.0; }),
-            "options: smoothing.weight: expected within [0, 1], got 2");
+            "options: smoothing.weight: expected a value in [0, 1], got 2");
   EXPECT_EQ(message([](auto& o) { o.radii.max_correction = 0.5; }),
             "options: radii.max_correction: expected >= 1, got 0.5");
   EXPECT_EQ(message([](auto& o) { o.branches.comparable_share = -0.1; }),

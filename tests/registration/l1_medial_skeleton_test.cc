@@ -75,7 +75,7 @@ TEST(L1MedialSkeleton, NonsenseOptionsAreRefused) {
   using test::RefusedField;
   EXPECT_EQ(RefusedField(SkeletonOptions{}), "");
   EXPECT_EQ(RefusedField(SkeletonOptions{.repulsion_mu = 0.6}), "repulsion_mu");
-  EXPECT_EQ(RefusedField(SkeletonOptions{.max_points = 10, .min_points = 20}), "min_points");
+  EXPECT_EQ(RefusedField(SkeletonOptions{.max_points = 10, .min_points = 20}), "max_points");
   EXPECT_EQ(RefusedField(SkeletonOptions{.initial_radius_m = 0}), "initial_radius_m");
   EXPECT_THROW(L1MedialSkeleton({Eigen::Vector3d::Zero()}, SkeletonOptions{.rounds = 0}),
                InputError);

@@ -100,7 +100,7 @@ TEST(Trunk, NonsenseOptionsAreRefused) {
   EXPECT_EQ(RefusedField(CylinderFitOptions{}), "");
   EXPECT_EQ(RefusedField(CylinderFitOptions{.min_points = 4}), "min_points");
   EXPECT_EQ(RefusedField(KeyRegionOptions{}), "");
-  EXPECT_EQ(RefusedField(KeyRegionOptions{.min_radius_m = 2.0}), "min_radius_m");  // > max
+  EXPECT_EQ(RefusedField(KeyRegionOptions{.min_radius_m = 2.0}), "max_radius_m");  // < min
   open3d::geometry::PointCloud cloud;
   EXPECT_THROW(FindTrunk(cloud, -Eigen::Vector3d::UnitY(), 0.01, {.max_gap_slices = -1}),
                InputError);

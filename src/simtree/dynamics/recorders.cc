@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "simtree/core/error.h"
-#include "simtree/dynamics/detail/check_option.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/io/capture.h"
 
 namespace simtree::dynamics {

@@ -7,8 +7,8 @@
 #include <spdlog/spdlog.h>
 
 #include "simtree/core/error.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/core/progress.h"
-#include "simtree/dynamics/detail/check_option.h"
 #include "simtree/dynamics/live_pull.h"
 
 namespace simtree::dynamics {

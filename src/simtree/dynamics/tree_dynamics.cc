@@ -6,12 +6,12 @@
 #include <fmt/format.h>
 
 #include "simtree/core/error.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/core/units.h"
 #include "simtree/core/validate.h"
 #include "simtree/dynamics/detail/branch_mechanics.h"
 #include "simtree/dynamics/detail/branch_model.h"
 #include "simtree/dynamics/detail/branch_state.h"
-#include "simtree/dynamics/detail/check_option.h"
 #include "simtree/dynamics/detail/loads.h"
 #include "simtree/dynamics/detail/modal_step.h"
 #include "simtree/dynamics/detail/node_deform.h"

@@ -9,8 +9,8 @@
 #include <Eigen/Geometry>
 
 #include "simtree/core/error.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/core/units.h"
-#include "simtree/dynamics/detail/check_option.h"
 
 namespace simtree::dynamics {
 namespace {

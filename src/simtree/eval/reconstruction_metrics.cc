@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "simtree/reconstruction/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/reconstruction/detail/point_index.h"
 
 namespace simtree::eval {
@@ -264,11 +264,11 @@ TrunkRadii CompareTrunkRadii(const SkeletonSamples& rec, const Tree& truth,
 }  // namespace
 
 void TruthScoreOptions::Validate() const {
-  reconstruction::CheckNonNegative("min_true_radius_m", min_true_radius_m);
-  reconstruction::CheckNonNegative("near_distance_m", near_distance_m);
-  reconstruction::CheckShare("found_share", found_share);
-  reconstruction::CheckPositive("sample_step_m", sample_step_m);
-  reconstruction::CheckNonNegative("trunk_height_m", trunk_height_m);
+  CheckNonNegative("min_true_radius_m", min_true_radius_m);
+  CheckNonNegative("near_distance_m", near_distance_m);
+  CheckShare("found_share", found_share);
+  CheckPositive("sample_step_m", sample_step_m);
+  CheckNonNegative("trunk_height_m", trunk_height_m);
 }
 
 TruthScores ScoreAgainstTruth(const Tree& reconstruction, const Tree& truth,

@@ -5,8 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "simtree/core/option_checks.h"
 #include "simtree/core/units.h"
-#include "simtree/identification/detail/option_checks.h"
 
 namespace simtree::identification {
 namespace {
@@ -193,21 +193,21 @@ void ReadFittedModes(DampedSinusoidFit fit, int channels, double record_s, doubl
 }
 
 void EstimatorOptions::Validate() const {
-  RequireNonNegative(min_frequency_hz, "min_frequency_hz");
-  RequireNonNegative(max_frequency_hz, "max_frequency_hz");
+  CheckNonNegative("min_frequency_hz", min_frequency_hz);
+  CheckNonNegative("max_frequency_hz", max_frequency_hz);
   if (min_frequency_hz > 0 && max_frequency_hz > 0) {
-    RequireOption(max_frequency_hz > min_frequency_hz, "max_frequency_hz",
-                  fmt::format("> min_frequency_hz ({})", min_frequency_hz), max_frequency_hz);
+    CheckThat(max_frequency_hz > min_frequency_hz, "max_frequency_hz",
+              fmt::format("> min_frequency_hz ({})", min_frequency_hz), max_frequency_hz);
   }
-  RequirePositive(min_periods, "min_periods");
-  RequireShare(max_gap_fraction, "max_gap_fraction");
-  RequireNonNegative(flat_ratio, "flat_ratio");
-  RequireAtLeast(zero_pad_factor, 1, "zero_pad_factor");
-  RequireNonNegative(window_decay_nepers, "window_decay_nepers");
-  RequireAtLeast(max_modes, 1, "max_modes");
-  RequireOption(max_damping_ratio > 0 && max_damping_ratio < 1, "max_damping_ratio",
-                "a damping ratio in (0, 1)", max_damping_ratio);
-  RequireAtLeast(max_iterations, 1, "max_iterations");
+  CheckPositive("min_periods", min_periods);
+  CheckShare("max_gap_fraction", max_gap_fraction);
+  CheckNonNegative("flat_ratio", flat_ratio);
+  CheckAtLeast("zero_pad_factor", zero_pad_factor, 1);
+  CheckNonNegative("window_decay_nepers", window_decay_nepers);
+  CheckAtLeast("max_modes", max_modes, 1);
+  CheckThat(max_damping_ratio > 0 && max_damping_ratio < 1, "max_damping_ratio",
+            "a damping ratio in (0, 1)", max_damping_ratio);
+  CheckAtLeast("max_iterations", max_iterations, 1);
 }
 
 SearchBand BandOf(const EstimatorOptions& options, double duration_s, double dt) {

@@ -8,7 +8,7 @@
 #include <spdlog/spdlog.h>
 
 #include "simtree/core/error.h"
-#include "simtree/identification/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 
 namespace simtree::identification {
 
@@ -79,20 +79,20 @@ MaterialRanges IdentificationResult::Ranges(std::optional<EstimatorKind> kind,
 
 void IdentifyOptions::Validate() const {
   if (release_time_s) {
-    RequireOption(std::isfinite(*release_time_s), "release_time_s", "a finite time in s",
-                  *release_time_s);
+    CheckThat(std::isfinite(*release_time_s), "release_time_s", "a finite time in s",
+              *release_time_s);
   }
-  RequireNonNegative(window_s, "window_s");
-  ValidateMember(estimation, "estimation");
-  ValidateMember(release, "release");
-  ValidateMember(deflection, "deflection");
-  ValidateMember(outliers, "outliers");
-  ValidateMember(joint, "joint");
+  CheckNonNegative("window_s", window_s);
+  CheckNested("estimation", estimation);
+  CheckNested("release", release);
+  CheckNested("deflection", deflection);
+  CheckNested("outliers", outliers);
+  CheckNested("joint", joint);
 }
 
 void RangeOptions::Validate() const {
-  RequirePositive(max_frequency_relative_std, "max_frequency_relative_std");
-  RequirePositive(max_damping_relative_std, "max_damping_relative_std");
+  CheckPositive("max_frequency_relative_std", max_frequency_relative_std);
+  CheckPositive("max_damping_relative_std", max_damping_relative_std);
 }
 
 const char* ToString(JointPolesOutcome outcome) {

@@ -11,7 +11,7 @@
 
 #include "simtree/core/atomic_file.h"
 #include "simtree/core/error.h"
-#include "simtree/identification/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 
 namespace simtree::identification {
 namespace {
@@ -240,9 +240,9 @@ void DrawSpectrumPanel(cv::Mat& image, const LinkIdentification& link, const Pan
 }  // namespace
 
 void SpectrumPlotOptions::Validate() const {
-  RequireAtLeast(width, 300, "width");
-  RequireAtLeast(height, 300, "height");
-  RequireNonNegative(max_frequency_hz, "max_frequency_hz");
+  CheckAtLeast("width", width, 300);
+  CheckAtLeast("height", height, 300);
+  CheckNonNegative("max_frequency_hz", max_frequency_hz);
 }
 
 void WriteLinkPlot(const IdentificationResult& result, const LinkIdentification& link,

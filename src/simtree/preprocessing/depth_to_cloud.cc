@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "simtree/core/error.h"
-#include "simtree/preprocessing/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 
 namespace simtree::preprocessing {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <open3d/geometry/KDTreeFlann.h>
 
-#include "simtree/preprocessing/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 
 namespace simtree::preprocessing {
 

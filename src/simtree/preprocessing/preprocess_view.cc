@@ -12,8 +12,8 @@
 #include <Eigen/Eigenvalues>
 
 #include "simtree/core/error.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/core/statistics.h"
-#include "simtree/preprocessing/detail/option_checks.h"
 #include "simtree/preprocessing/point_spacing.h"
 
 namespace simtree::preprocessing {
@@ -44,7 +44,7 @@ void PreprocessOptions::Validate() const {
   CheckPositive("ground_search_band_m", ground_search_band_m);
   CheckNonNegative("ground_noise_sigmas", ground_noise_sigmas);
   CheckNonNegative("min_ground_band_m", min_ground_band_m);
-  CheckRange("max_ground_tilt_deg", max_ground_tilt_deg, 0.0, 90.0);
+  CheckInRange("max_ground_tilt_deg", max_ground_tilt_deg, 0.0, 90.0);
   CheckPositive("ground_ransac_iterations", ground_ransac_iterations);
   CheckPositive("ground_sample_points", static_cast<double>(ground_sample_points));
   CheckShare("min_ground_share", min_ground_share);

@@ -31,13 +31,13 @@
 
 #include <Eigen/Core>
 
+#include "simtree/core/option_checks.h"
 #include "simtree/core/tree.h"
 #include "simtree/reconstruction/detail/allometric_radii.h"
 #include "simtree/reconstruction/detail/branch_decomposition.h"
 #include "simtree/reconstruction/detail/cloud_preparation.h"
 #include "simtree/reconstruction/detail/cloud_scale.h"
 #include "simtree/reconstruction/detail/ground_plane.h"
-#include "simtree/reconstruction/detail/option_checks.h"
 #include "simtree/reconstruction/detail/scene_cleanup.h"
 #include "simtree/reconstruction/detail/skeleton.h"
 #include "simtree/reconstruction/detail/skeleton_smoothing.h"

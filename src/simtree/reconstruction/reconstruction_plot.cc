@@ -9,8 +9,8 @@
 
 #include "simtree/core/atomic_file.h"
 #include "simtree/core/error.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/io/mesh_io.h"
-#include "simtree/reconstruction/detail/option_checks.h"
 
 namespace simtree::reconstruction {
 namespace {

@@ -8,7 +8,7 @@
 #include <open3d/utility/Random.h>
 #include <Eigen/Eigenvalues>
 
-#include "simtree/preprocessing/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 
 namespace simtree::registration {
 namespace {
@@ -44,7 +44,6 @@ std::pair<Eigen::Vector3d, Eigen::Matrix3d> Principal(const open3d::geometry::Po
 }  // namespace
 
 void BaselineOptions::Validate() const {
-  using namespace preprocessing;
   CheckPositive("spacing_m", spacing_m);
   CheckPositive("feature_voxel_factor", feature_voxel_factor);
   CheckPositive("normal_radius_factor", normal_radius_factor);

@@ -9,7 +9,7 @@
 #include <oneapi/tbb/parallel_for.h>
 
 #include "simtree/core/error.h"
-#include "simtree/preprocessing/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/registration/detail/pose_graph.h"
 
 namespace simtree::registration {
@@ -118,7 +118,6 @@ open3d::geometry::PointCloud MergeViews(const std::vector<RegistrationView>& vie
 }  // namespace
 
 void MultiViewOptions::Validate() const {
-  using namespace preprocessing;
   CheckNested("pair", [&] { pair.Validate(); });
   CheckAtLeast("neighbour_span", neighbour_span, 1);
   CheckAtLeast("anchor", anchor, -1);

@@ -7,7 +7,7 @@
 #include <oneapi/tbb/parallel_for.h>
 
 #include "simtree/core/error.h"
-#include "simtree/preprocessing/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/registration/detail/pose_graph.h"
 
 namespace simtree::registration {
@@ -114,7 +114,6 @@ void PlaceByAgreeingPairs(const MultiViewResult& registered, const RegistrationV
 }  // namespace
 
 void ExtraViewOptions::Validate() const {
-  using namespace preprocessing;
   CheckNested("pair", [&] { pair.Validate(); });
   CheckAtLeast("max_pairs", max_pairs, 1);
   CheckPositive("max_rotation_deg", max_rotation_deg);

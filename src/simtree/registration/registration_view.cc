@@ -8,8 +8,8 @@
 #include <oneapi/tbb/parallel_for.h>
 
 #include "simtree/core/error.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/core/progress.h"
-#include "simtree/preprocessing/detail/option_checks.h"
 #include "simtree/preprocessing/point_spacing.h"
 #include "simtree/registration/detail/medial_projection.h"
 
@@ -127,7 +127,6 @@ CoarseInput ParseCoarseInput(const std::string& name) {
 }
 
 void RegistrationViewOptions::Validate() const {
-  using namespace preprocessing;
   CheckPositive("normal_radius_factor", normal_radius_factor);
   CheckAtLeast("normal_max_neighbors", normal_max_neighbors, 1);
   CheckNested("trunk", [&] { trunk.Validate(); });

@@ -8,10 +8,10 @@
 
 #include "simtree/core/error.h"
 #include "simtree/core/frames.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/core/statistics.h"
 #include "simtree/core/units.h"
 #include "simtree/core/validate.h"
-#include "simtree/identification/detail/option_checks.h"
 
 namespace simtree::simready {
 
@@ -86,8 +86,8 @@ Tree RenumberDepthFirst(const Tree& tree, std::vector<int>* new_id_out) {
 }
 
 void BuildOptions::Validate() const {
-  identification::RequirePositive(wood_density_kg_m3, "wood_density_kg_m3");
-  identification::ValidateMember(interpolation, "interpolation");
+  CheckPositive("wood_density_kg_m3", wood_density_kg_m3);
+  CheckNested("interpolation", interpolation);
 }
 
 namespace {

@@ -9,8 +9,8 @@
 
 #include "simtree/core/atomic_file.h"
 #include "simtree/core/error.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/core/progress.h"
-#include "simtree/dynamics/detail/check_option.h"
 #include "simtree/io/capture.h"
 #include "simtree/io/ground_truth.h"
 #include "simtree/io/image_io.h"
@@ -175,7 +175,7 @@ RenderView ChooseView(const Tree& tree, const RenderOptions& options,
 
 void RenderOptions::Validate() const {
   const auto check = [](bool ok, const std::string& field, const std::string& message) {
-    dynamics::CheckOption(ok, "render options", field, message);
+    CheckOption(ok, "render options", field, message);
   };
   ValidateFramebuffer(width, height, samples, "render options");
   check(std::isfinite(yaw_rad) && std::isfinite(pitch_rad), "yaw_rad",

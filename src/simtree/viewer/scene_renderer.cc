@@ -8,8 +8,8 @@
 #include <fmt/format.h>
 
 #include "simtree/core/error.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/core/units.h"
-#include "simtree/dynamics/detail/check_option.h"
 #include "simtree/io/mesh_io.h"
 #include "simtree/viewer/detail/gl_objects.h"
 #include "simtree/viewer/detail/shaders.h"
@@ -334,7 +334,7 @@ void SceneRenderer::Impl::DrawFlat(const CameraView& camera,
 
 void SceneOptions::Validate() const {
   const auto check = [](bool ok, const std::string& field, const std::string& message) {
-    dynamics::CheckOption(ok, "scene options", field, message);
+    CheckOption(ok, "scene options", field, message);
   };
   check(tube.sides >= 3, "tube.sides", fmt::format("expected 3 or more sides, got {}", tube.sides));
   check(tube.min_radius >= 0.0 && std::isfinite(tube.min_radius), "tube.min_radius",

@@ -12,19 +12,19 @@
 
 #include "simtree/core/atomic_file.h"
 #include "simtree/core/error.h"
-#include "simtree/dynamics/detail/check_option.h"
+#include "simtree/core/option_checks.h"
 
 extern char** environ;
 
 namespace simtree::viewer {
 
 void VideoOptions::Validate() const {
-  dynamics::CheckOption(fps > 0.0 && std::isfinite(fps), "video options", "fps",
-                        fmt::format("expected a frame rate > 0, got {}", fps));
-  dynamics::CheckOption(crf >= 0 && crf <= 51, "video options", "crf",
-                        fmt::format("expected 0 to 51, got {}", crf));
-  dynamics::CheckOption(!pattern.empty(), "video options", "pattern",
-                        "expected a frame file name pattern such as %06d.png");
+  CheckOption(fps > 0.0 && std::isfinite(fps), "video options", "fps",
+              fmt::format("expected a frame rate > 0, got {}", fps));
+  CheckOption(crf >= 0 && crf <= 51, "video options", "crf",
+              fmt::format("expected 0 to 51, got {}", crf));
+  CheckOption(!pattern.empty(), "video options", "pattern",
+              "expected a frame file name pattern such as %06d.png");
 }
 
 void EncodeVideo(const std::filesystem::path& frames_dir, const std::filesystem::path& output,

@@ -12,8 +12,8 @@
 #include <spdlog/spdlog.h>
 
 #include "simtree/core/error.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/core/units.h"
-#include "simtree/dynamics/detail/check_option.h"
 #include "simtree/dynamics/live_pull.h"
 #include "simtree/io/image_io.h"
 #include "simtree/viewer/detail/camera.h"
@@ -161,8 +161,8 @@ void Viewer::Impl::DrawOverlays(const CameraView& view) {
 
 void ViewerOptions::Validate() const {
   ValidateFramebuffer(width, height, samples, "viewer options");
-  dynamics::CheckOption(fps > 0.0 && std::isfinite(fps), "viewer options", "fps",
-                        fmt::format("expected a frame rate > 0, got {}", fps));
+  CheckOption(fps > 0.0 && std::isfinite(fps), "viewer options", "fps",
+              fmt::format("expected a frame rate > 0, got {}", fps));
   scene.Validate();
   dynamics.Validate();
   if (pull) pull->Validate();

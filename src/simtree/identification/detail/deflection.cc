@@ -10,7 +10,7 @@
 #include <Eigen/Geometry>
 
 #include "simtree/core/frames.h"
-#include "simtree/identification/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 
 namespace simtree::identification {
 namespace {
@@ -173,8 +173,8 @@ void DeflectionOptions::Validate() const {
                                                "{}, {})",
                                                camera_up.x(), camera_up.y(), camera_up.z()));
   }
-  RequireOption(rest_fraction > 0 && rest_fraction <= 1, "rest_fraction",
-                "a share of the frames in (0, 1]", rest_fraction);
+  CheckThat(rest_fraction > 0 && rest_fraction <= 1, "rest_fraction",
+            "a share of the frames in (0, 1]", rest_fraction);
 }
 
 const char* ToString(DeflectionStatus status) {

@@ -9,8 +9,8 @@
 #include <Eigen/QR>
 #include <Eigen/SVD>
 
+#include "simtree/core/option_checks.h"
 #include "simtree/core/units.h"
-#include "simtree/identification/detail/option_checks.h"
 
 namespace simtree::identification {
 namespace {
@@ -301,10 +301,10 @@ std::vector<LinkSamples> ScaledValidSamples(const std::vector<SampledSignal>& si
 }  // namespace
 
 void JointPolesOptions::Validate() const {
-  RequireAtLeast(components, 1, "components");
-  RequireAtLeast(max_modes, 1, "max_modes");
-  RequireOption(min_split >= 0 && min_split < 1, "min_split", "a relative frequency in [0, 1)",
-                min_split);
+  CheckAtLeast("components", components, 1);
+  CheckAtLeast("max_modes", max_modes, 1);
+  CheckThat(min_split >= 0 && min_split < 1, "min_split", "a relative frequency in [0, 1)",
+            min_split);
 }
 
 JointPoles EstimateJointPoles(const std::vector<SampledSignal>& signals,

@@ -9,8 +9,8 @@
 
 #include <fmt/format.h>
 
+#include "simtree/core/option_checks.h"
 #include "simtree/core/statistics.h"
-#include "simtree/identification/detail/option_checks.h"
 
 namespace simtree::identification {
 namespace {
@@ -117,13 +117,13 @@ MarkerRelease ReleaseOf(const MarkerMotion& m, int hold_frames, const ReleaseOpt
 }  // namespace
 
 void ReleaseOptions::Validate() const {
-  RequireOption(swing_fraction > 0 && swing_fraction <= 1, "swing_fraction",
-                "a share of the peak speed in (0, 1]", swing_fraction);
-  RequireShare(quiet_fraction, "quiet_fraction");
-  RequireOption(quiet_fraction < swing_fraction, "quiet_fraction",
-                fmt::format("< swing_fraction ({})", swing_fraction), quiet_fraction);
-  RequireNonNegative(noise_factor, "noise_factor");
-  RequireNonNegative(min_hold_s, "min_hold_s");
+  CheckThat(swing_fraction > 0 && swing_fraction <= 1, "swing_fraction",
+            "a share of the peak speed in (0, 1]", swing_fraction);
+  CheckShare("quiet_fraction", quiet_fraction);
+  CheckThat(quiet_fraction < swing_fraction, "quiet_fraction",
+            fmt::format("< swing_fraction ({})", swing_fraction), quiet_fraction);
+  CheckNonNegative("noise_factor", noise_factor);
+  CheckNonNegative("min_hold_s", min_hold_s);
 }
 
 const char* ToString(ReleaseOutcome outcome) {

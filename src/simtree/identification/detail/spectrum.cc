@@ -5,8 +5,8 @@
 
 #include <opencv2/core.hpp>
 
+#include "simtree/core/option_checks.h"
 #include "simtree/core/units.h"
-#include "simtree/identification/detail/option_checks.h"
 
 namespace simtree::identification {
 
@@ -23,8 +23,8 @@ const char* ToString(SpectralWindow window) {
 }
 
 void SpectrumOptions::Validate() const {
-  RequireNonNegative(exponential_rate, "exponential_rate");
-  RequireAtLeast(zero_pad_factor, 1, "zero_pad_factor");
+  CheckNonNegative("exponential_rate", exponential_rate);
+  CheckAtLeast("zero_pad_factor", zero_pad_factor, 1);
 }
 
 AmplitudeSpectrum ComputeAmplitudeSpectrum(const std::vector<double>& samples, double dt,

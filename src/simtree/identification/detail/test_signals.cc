@@ -9,8 +9,8 @@
 #include <Eigen/Geometry>
 
 #include "simtree/core/frames.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/core/units.h"
-#include "simtree/identification/detail/option_checks.h"
 
 namespace simtree::identification {
 
@@ -21,12 +21,12 @@ double DampedSinusoid::operator()(double t) const {
 }
 
 void DecayRecordOptions::Validate() const {
-  RequirePositive(fps, "fps");
-  RequirePositive(duration_s, "duration_s");
-  RequireNonNegative(noise_std, "noise_std");
-  RequireOption(std::isfinite(offset), "offset", "a finite number", offset);
-  RequireShare(gap_rate, "gap_rate");
-  RequireAtLeast(max_gap_samples, 1, "max_gap_samples");
+  CheckPositive("fps", fps);
+  CheckPositive("duration_s", duration_s);
+  CheckNonNegative("noise_std", noise_std);
+  CheckThat(std::isfinite(offset), "offset", "a finite number", offset);
+  CheckShare("gap_rate", gap_rate);
+  CheckAtLeast("max_gap_samples", max_gap_samples, 1);
 }
 
 SampledSignal MakeDecayRecord(const std::vector<std::vector<DampedSinusoid>>& channels,

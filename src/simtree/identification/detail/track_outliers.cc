@@ -9,8 +9,8 @@
 #include <fmt/format.h>
 #include <Eigen/Cholesky>
 
+#include "simtree/core/option_checks.h"
 #include "simtree/core/statistics.h"
-#include "simtree/identification/detail/option_checks.h"
 
 namespace simtree::identification {
 namespace {
@@ -93,10 +93,10 @@ double DeviationFromLocalCubic(const MarkerTrack& track, int i,
 }  // namespace
 
 void TrackOutlierOptions::Validate() const {
-  RequireAtLeast(half_window, 3, "half_window");
-  RequireOption(max_trimmed >= 0 && max_trimmed <= 2, "max_trimmed", "0, 1 or 2", max_trimmed);
-  RequirePositive(threshold, "threshold");
-  RequireNonNegative(min_deviation_m, "min_deviation_m");
+  CheckAtLeast("half_window", half_window, 3);
+  CheckThat(max_trimmed >= 0 && max_trimmed <= 2, "max_trimmed", "0, 1 or 2", max_trimmed);
+  CheckPositive("threshold", threshold);
+  CheckNonNegative("min_deviation_m", min_deviation_m);
 }
 
 TrackOutlierReport RemoveTrackOutliers(Trajectories& trajectories,

@@ -6,10 +6,10 @@
 
 #include <Eigen/Geometry>
 
+#include "simtree/core/option_checks.h"
 #include "simtree/core/statistics.h"
 #include "simtree/core/units.h"
 #include "simtree/reconstruction/detail/local_geometry.h"
-#include "simtree/reconstruction/detail/option_checks.h"
 #include "simtree/reconstruction/detail/point_index.h"
 #include "simtree/reconstruction/detail/trunk_cylinder.h"
 
@@ -76,11 +76,11 @@ void RadiusOptions::Validate() const {
   CheckNonNegative("tip_length_m", tip_length_m);
   CheckPositive("min_radius_m", min_radius_m);
   CheckAtLeast("fit_min_points", fit_min_points, 3);
-  CheckWithin("fit_min_arc_rad", fit_min_arc_rad, 0.0, 2 * M_PI);
+  CheckInRange("fit_min_arc_rad", fit_min_arc_rad, 0.0, 2 * M_PI);
   CheckPositive("fit_max_residual", fit_max_residual);
   CheckNonNegative("fit_min_radius_over_noise", fit_min_radius_over_noise);
-  CheckNotBelow("fit_max_ratio", fit_max_ratio, 1.0);
-  CheckNotBelow("max_correction", max_correction, 1.0);
+  CheckAtLeast("fit_max_ratio", fit_max_ratio, 1.0);
+  CheckAtLeast("max_correction", max_correction, 1.0);
 }
 
 void AssignRadii(Skeleton& skeleton, int anchor_node, double anchor_radius_m,

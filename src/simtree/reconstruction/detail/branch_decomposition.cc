@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "simtree/core/frames.h"
-#include "simtree/reconstruction/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 
 namespace simtree::reconstruction {
 namespace {

@@ -9,7 +9,7 @@
 #include <spdlog/spdlog.h>
 
 #include "simtree/core/error.h"
-#include "simtree/reconstruction/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 
 namespace simtree::reconstruction {
 namespace {
@@ -72,7 +72,7 @@ void CloudPreparationOptions::Validate() const {
   CheckNonNegative("min_height_m", min_height_m);
   CheckOrdered("min_height_m", min_height_m, "max_height_m", max_height_m);
   CheckNonNegative("min_height_to_width", min_height_to_width);
-  CheckWithin("extent_trim", extent_trim, 0.0, 0.5);
+  CheckInRange("extent_trim", extent_trim, 0.0, 0.5);
 }
 
 PreparedCloud PrepareCloud(std::span<const Eigen::Vector3d> points, const std::string& source,

@@ -8,9 +8,9 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "simtree/core/option_checks.h"
 #include "simtree/core/statistics.h"
 #include "simtree/reconstruction/detail/local_geometry.h"
-#include "simtree/reconstruction/detail/option_checks.h"
 #include "simtree/reconstruction/detail/point_index.h"
 
 namespace simtree::reconstruction {

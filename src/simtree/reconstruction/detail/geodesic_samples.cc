@@ -5,7 +5,7 @@
 #include <numeric>
 #include <unordered_map>
 
-#include "simtree/reconstruction/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 
 namespace simtree::reconstruction {
 namespace {

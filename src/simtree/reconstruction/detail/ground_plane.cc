@@ -10,8 +10,8 @@
 
 #include <Eigen/Geometry>
 
+#include "simtree/core/option_checks.h"
 #include "simtree/reconstruction/detail/cloud_preparation.h"
-#include "simtree/reconstruction/detail/option_checks.h"
 
 namespace simtree::reconstruction {
 
@@ -187,8 +187,8 @@ double GroundClearance(std::span<const Eigen::Vector3d> points, std::span<const 
 
 void GroundOptions::Validate() const {
   CheckPositive("tolerance_m", tolerance_m);
-  CheckWithin("max_tilt_rad", max_tilt_rad, 0.0, M_PI / 2);
-  CheckWithin("search_share", search_share, 0.0, 1.0);
+  CheckInRange("max_tilt_rad", max_tilt_rad, 0.0, M_PI / 2);
+  CheckInRange("search_share", search_share, 0.0, 1.0);
   CheckNonNegative("min_width_m", min_width_m);
   CheckShare("max_covered_share", max_covered_share);
   CheckAtLeast("min_points", min_points, 3);

@@ -9,7 +9,7 @@
 #include <tuple>
 #include <unordered_map>
 
-#include "simtree/reconstruction/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 
 namespace simtree::reconstruction {
 namespace {

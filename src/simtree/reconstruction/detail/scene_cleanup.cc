@@ -5,7 +5,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "simtree/reconstruction/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/reconstruction/detail/point_index.h"
 
 namespace simtree::reconstruction {

@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "simtree/reconstruction/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 
 namespace simtree::reconstruction {
 

@@ -7,7 +7,7 @@
 #include <numeric>
 #include <vector>
 
-#include "simtree/reconstruction/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/reconstruction/detail/point_index.h"
 
 namespace simtree::reconstruction {

@@ -9,9 +9,9 @@
 #include <fmt/format.h>
 #include <Eigen/Dense>
 
+#include "simtree/core/option_checks.h"
 #include "simtree/core/statistics.h"
 #include "simtree/reconstruction/detail/local_geometry.h"
-#include "simtree/reconstruction/detail/option_checks.h"
 #include "simtree/reconstruction/detail/point_index.h"
 
 namespace simtree::reconstruction {
@@ -474,7 +474,7 @@ bool FitCircleRobust(std::span<const Eigen::Vector3d> points, const Eigen::Vecto
 
 void TrunkFitOptions::Validate() const {
   CheckAtLeast("iterations", iterations, 1);
-  CheckWithin("max_tilt_rad", max_tilt_rad, 0.0, M_PI / 2);
+  CheckInRange("max_tilt_rad", max_tilt_rad, 0.0, M_PI / 2);
   CheckPositive("min_radius_m", min_radius_m);
   CheckOrdered("min_radius_m", min_radius_m, "max_radius_m", max_radius_m);
   CheckAtLeast("normal_neighbours", normal_neighbours, 3);

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "simtree/reconstruction/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/reconstruction/detail/point_index.h"
 
 namespace simtree::reconstruction {

@@ -8,7 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "simtree/core/error.h"
-#include "simtree/preprocessing/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 
 namespace simtree::registration {
 namespace {
@@ -65,7 +65,6 @@ std::array<uint8_t, 3> ViewColor(int index) {
 }
 
 void PictureOptions::Validate() const {
-  using namespace preprocessing;
   CheckAtLeast("panel_width", panel_width, 64);
   CheckAtLeast("side_height", side_height, 64);
   CheckAtLeast("top_height", top_height, 64);

@@ -11,7 +11,7 @@
 #include <oneapi/tbb/parallel_reduce.h>
 #include <Eigen/SVD>
 
-#include "simtree/preprocessing/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 
 namespace simtree::registration {
 namespace {
@@ -103,10 +103,9 @@ void AddPlane(const PlaneConstraint& plane, const Eigen::Isometry3d& transform, 
 }  // namespace
 
 void GatedIcpOptions::Validate() const {
-  using namespace preprocessing;
   CheckPositiveList("max_distances_m", max_distances_m, false);
   CheckAtLeast("iterations_per_stage", iterations_per_stage, 1);
-  CheckRange("max_normal_angle_deg", max_normal_angle_deg, 0.0, 180.0);
+  CheckInRange("max_normal_angle_deg", max_normal_angle_deg, 0.0, 180.0);
   CheckNonNegative("huber_share", huber_share);
   CheckShare("min_planarity", min_planarity);
   CheckNonNegative("min_rotation_step", min_rotation_step);
@@ -114,7 +113,6 @@ void GatedIcpOptions::Validate() const {
 }
 
 void MedialShiftOptions::Validate() const {
-  using namespace preprocessing;
   CheckPositiveList("max_distances_m", max_distances_m, false);
   CheckAtLeast("iterations_per_stage", iterations_per_stage, 1);
   CheckNonNegative("min_step_m", min_step_m);

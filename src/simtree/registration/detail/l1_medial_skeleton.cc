@@ -10,7 +10,7 @@
 #include <open3d/geometry/PointCloud.h>
 #include <Eigen/Eigenvalues>
 
-#include "simtree/preprocessing/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 
 namespace simtree::registration {
 namespace {
@@ -36,7 +36,6 @@ double Directionality(const std::vector<Eigen::Vector3d>& x, size_t i, const std
 }  // namespace
 
 void SkeletonOptions::Validate() const {
-  using namespace preprocessing;
   CheckShare("sample_share", sample_share);
   CheckAtLeast("max_points", max_points, 1);
   CheckAtLeast("min_points", min_points, 1);
@@ -45,7 +44,7 @@ void SkeletonOptions::Validate() const {
   CheckAtLeast("radius_growth", radius_growth, 1.0);
   CheckAtLeast("rounds", rounds, 1);
   CheckAtLeast("iterations_per_round", iterations_per_round, 1);
-  CheckRange("repulsion_mu", repulsion_mu, 0.0, 0.5);
+  CheckInRange("repulsion_mu", repulsion_mu, 0.0, 0.5);
   CheckNonNegative("merge_share", merge_share);
 }
 

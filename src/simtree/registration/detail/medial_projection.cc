@@ -8,7 +8,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
-#include "simtree/preprocessing/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 
 namespace simtree::registration {
 namespace {
@@ -61,7 +61,6 @@ std::optional<Eigen::Vector3d> SilhouetteAxisPoint(const open3d::geometry::Point
 }  // namespace
 
 void MedialProjectionOptions::Validate() const {
-  using namespace preprocessing;
   CheckPositive("neighbourhood_m", neighbourhood_m);
   CheckAtLeast("max_neighbours", max_neighbours, 2);
   CheckNonNegative("max_shift_m", max_shift_m);

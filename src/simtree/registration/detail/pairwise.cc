@@ -11,7 +11,7 @@
 
 #include <fmt/format.h>
 
-#include "simtree/preprocessing/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 
 namespace simtree::registration {
 namespace {
@@ -655,13 +655,12 @@ const char* ToString(PairAttempt attempt) {
 }
 
 void PairOptions::Validate() const {
-  using namespace preprocessing;
   CheckNested("sac_ia", [&] { sac_ia.Validate(); });
   CheckNested("icp", [&] { icp.Validate(); });
   CheckNested("medial", [&] { medial.Validate(); });
   CheckNonNegative("max_center_offset_share", max_center_offset_share);
   CheckPositiveList("icp_distance_factors", icp_distance_factors, true);
-  CheckRange("turn_step_deg", turn_step_deg, 0.0, 360.0);
+  CheckInRange("turn_step_deg", turn_step_deg, 0.0, 360.0);
   CheckNonNegative("turned_refinements", turned_refinements);
   CheckAtLeast("turn_screen_iterations", turn_screen_iterations, 1);
   CheckShare("screen_below_overlap", screen_below_overlap);
@@ -677,16 +676,16 @@ void PairOptions::Validate() const {
   CheckPositive("match_distance_factor", match_distance_factor);
   CheckShare("min_fitness", min_fitness);
   CheckShare("min_fitness_without_priors", min_fitness_without_priors);
-  CheckRange("max_up_disagreement_deg", max_up_disagreement_deg, 0.0, 180.0);
+  CheckInRange("max_up_disagreement_deg", max_up_disagreement_deg, 0.0, 180.0);
   CheckNonNegative("max_ground_offset_m", max_ground_offset_m);
   CheckNonNegative("max_trunk_offset_factor", max_trunk_offset_factor);
-  CheckRange("max_trunk_tilt_deg", max_trunk_tilt_deg, 0.0, 180.0);
-  CheckRange("max_cylinder_tilt_deg", max_cylinder_tilt_deg, 0.0, 180.0);
+  CheckInRange("max_trunk_tilt_deg", max_trunk_tilt_deg, 0.0, 180.0);
+  CheckInRange("max_cylinder_tilt_deg", max_cylinder_tilt_deg, 0.0, 180.0);
   CheckNonNegative("max_cylinder_offset_m", max_cylinder_offset_m);
   CheckShare("min_coarse_overlap", min_coarse_overlap);
-  CheckRange("max_trunk_guard_tilt_deg", max_trunk_guard_tilt_deg, 0.0, 180.0);
+  CheckInRange("max_trunk_guard_tilt_deg", max_trunk_guard_tilt_deg, 0.0, 180.0);
   CheckNonNegative("max_trunk_guard_offset_m", max_trunk_guard_offset_m);
-  CheckRange("max_ground_guard_tilt_deg", max_ground_guard_tilt_deg, 0.0, 180.0);
+  CheckInRange("max_ground_guard_tilt_deg", max_ground_guard_tilt_deg, 0.0, 180.0);
   CheckNonNegative("max_ground_guard_offset_m", max_ground_guard_offset_m);
 }
 

@@ -8,7 +8,7 @@
 #include <open3d/geometry/KDTreeFlann.h>
 #include <Eigen/Geometry>
 
-#include "simtree/preprocessing/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 
 namespace simtree::registration {
 namespace {
@@ -95,7 +95,6 @@ Eigen::Isometry3d FitRigid(const std::vector<Eigen::Vector3d>& from,
 }
 
 void SacIaOptions::Validate() const {
-  using namespace preprocessing;
   CheckAtLeast("iterations", iterations, 1);
   CheckAtLeast("samples", samples, 2);
   CheckAtLeast("feature_neighbors", feature_neighbors, 1);

@@ -10,8 +10,8 @@
 #include <fmt/format.h>
 #include <Eigen/Eigenvalues>
 
+#include "simtree/core/option_checks.h"
 #include "simtree/core/statistics.h"
-#include "simtree/preprocessing/detail/option_checks.h"
 
 namespace simtree::registration {
 namespace {
@@ -259,7 +259,6 @@ TrunkFit FitTrunkAxis(const Slices& slices, const TrunkTrace& trace, double leng
 }  // namespace
 
 void TrunkOptions::Validate() const {
-  using namespace preprocessing;
   CheckPositive("slice_height_m", slice_height_m);
   CheckNonNegative("link_distance_m", link_distance_m);
   CheckNonNegative("min_trunk_length_m", min_trunk_length_m);
@@ -270,7 +269,6 @@ void TrunkOptions::Validate() const {
 }
 
 void CylinderFitOptions::Validate() const {
-  using namespace preprocessing;
   CheckNonNegative("margin_m", margin_m);
   CheckAtLeast("iterations", iterations, 1);
   CheckPositive("huber_m", huber_m);
@@ -279,7 +277,6 @@ void CylinderFitOptions::Validate() const {
 }
 
 void KeyRegionOptions::Validate() const {
-  using namespace preprocessing;
   CheckNonNegative("radius_m", radius_m);
   CheckShare("height_share", height_share);
   CheckNonNegative("min_radius_m", min_radius_m);

@@ -8,8 +8,8 @@
 #include <Eigen/QR>
 
 #include "simtree/core/error.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/core/statistics.h"
-#include "simtree/identification/detail/option_checks.h"
 
 namespace simtree::simready {
 namespace {
@@ -161,8 +161,8 @@ std::string InterpolationModel::Describe() const {
 }
 
 void InterpolationOptions::Validate() const {
-  identification::RequireAtLeast(min_branches_cantilever, 3, "min_branches_cantilever");
-  identification::RequireAtLeast(min_branches_two_slopes, 4, "min_branches_two_slopes");
+  CheckAtLeast("min_branches_cantilever", min_branches_cantilever, 3);
+  CheckAtLeast("min_branches_two_slopes", min_branches_two_slopes, 4);
 }
 
 namespace {

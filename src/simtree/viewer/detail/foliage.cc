@@ -7,8 +7,8 @@
 #include <fmt/format.h>
 
 #include "simtree/core/error.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/core/units.h"
-#include "simtree/dynamics/detail/check_option.h"
 
 namespace simtree::viewer {
 namespace {
@@ -32,7 +32,7 @@ Eigen::Quaternionf LeafFrame(const Eigen::Vector3d& axis, double roll) {
 
 void FoliageOptions::Validate() const {
   const auto check = [](bool ok, const std::string& field, const std::string& message) {
-    dynamics::CheckOption(ok, "foliage options", field, message);
+    CheckOption(ok, "foliage options", field, message);
   };
   check(leaves_per_metre >= 0.0 && std::isfinite(leaves_per_metre), "leaves_per_metre",
         fmt::format("expected >= 0, got {}", leaves_per_metre));

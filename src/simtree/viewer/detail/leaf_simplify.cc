@@ -13,7 +13,7 @@
 #include <Eigen/Geometry>
 
 #include "simtree/core/error.h"
-#include "simtree/dynamics/detail/check_option.h"
+#include "simtree/core/option_checks.h"
 
 namespace simtree::viewer {
 namespace {
@@ -261,11 +261,10 @@ void ThinPolyline(const std::vector<Eigen::Vector3f>& points, size_t first, size
 }  // namespace
 
 void LeafSimplifyOptions::Validate() const {
-  dynamics::CheckOption(
-      tolerance >= 0.0 && std::isfinite(tolerance), "leaf simplification", "tolerance",
-      fmt::format("expected a fraction of the leaf's length >= 0, got {}", tolerance));
-  dynamics::CheckOption(max_blade_vertices >= 0, "leaf simplification", "max_blade_vertices",
-                        fmt::format("expected >= 0, got {}", max_blade_vertices));
+  CheckOption(tolerance >= 0.0 && std::isfinite(tolerance), "leaf simplification", "tolerance",
+              fmt::format("expected a fraction of the leaf's length >= 0, got {}", tolerance));
+  CheckOption(max_blade_vertices >= 0, "leaf simplification", "max_blade_vertices",
+              fmt::format("expected >= 0, got {}", max_blade_vertices));
 }
 
 LeafSimplifyResult SimplifyLeafModel(const LeafModel& model, const LeafSimplifyOptions& options) {

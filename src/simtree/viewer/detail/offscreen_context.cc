@@ -12,7 +12,7 @@
 #include <spdlog/spdlog.h>
 
 #include "simtree/core/error.h"
-#include "simtree/dynamics/detail/check_option.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/viewer/detail/gl_objects.h"
 #include "simtree/viewer/scene_renderer.h"
 #include "simtree/viewer/xvfb.h"
@@ -126,22 +126,21 @@ struct OffscreenContext::Impl {
 };
 
 void ValidateFramebuffer(int width, int height, int samples, const std::string& source) {
-  dynamics::CheckOption(width >= 1 && width <= 16384, source, "width",
-                        fmt::format("expected 1-16384 pixels, got {}", width));
-  dynamics::CheckOption(height >= 1 && height <= 16384, source, "height",
-                        fmt::format("expected 1-16384 pixels, got {}", height));
-  dynamics::CheckOption(samples >= 0 && samples <= 16, source, "samples",
-                        fmt::format("expected 0 to 16 samples, got {}", samples));
+  CheckOption(width >= 1 && width <= 16384, source, "width",
+              fmt::format("expected 1-16384 pixels, got {}", width));
+  CheckOption(height >= 1 && height <= 16384, source, "height",
+              fmt::format("expected 1-16384 pixels, got {}", height));
+  CheckOption(samples >= 0 && samples <= 16, source, "samples",
+              fmt::format("expected 0 to 16 samples, got {}", samples));
 }
 
 void OffscreenOptions::Validate() const {
   const std::string source = "offscreen options";
   ValidateFramebuffer(width, height, samples, source);
-  dynamics::CheckOption(
-      backend == OffscreenBackend::kAuto || backend == OffscreenBackend::kEgl ||
-          backend == OffscreenBackend::kXvfb,
-      source, "backend",
-      fmt::format("expected auto, egl or xvfb, got {}", static_cast<int>(backend)));
+  CheckOption(backend == OffscreenBackend::kAuto || backend == OffscreenBackend::kEgl ||
+                  backend == OffscreenBackend::kXvfb,
+              source, "backend",
+              fmt::format("expected auto, egl or xvfb, got {}", static_cast<int>(backend)));
 }
 
 OffscreenContext::OffscreenContext(const OffscreenOptions& options)

@@ -6,7 +6,7 @@
 #include <fmt/format.h>
 
 #include "simtree/core/error.h"
-#include "simtree/dynamics/detail/check_option.h"
+#include "simtree/core/option_checks.h"
 
 namespace simtree::viewer {
 namespace {
@@ -37,9 +37,8 @@ double RaySegment(const Ray& ray, const Eigen::Vector3d& a, const Eigen::Vector3
 }  // namespace
 
 void PickOptions::Validate() const {
-  dynamics::CheckOption(std::isfinite(min_radius_px) && min_radius_px >= 0.0, "pick options",
-                        "min_radius_px",
-                        fmt::format("expected a width >= 0 pixels, got {}", min_radius_px));
+  CheckOption(std::isfinite(min_radius_px) && min_radius_px >= 0.0, "pick options", "min_radius_px",
+              fmt::format("expected a width >= 0 pixels, got {}", min_radius_px));
 }
 
 std::optional<BranchHit> PickBranch(const Tree& tree,

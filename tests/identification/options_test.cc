@@ -1,4 +1,4 @@
-#include "simtree/identification/detail/option_checks.h"
+#include "simtree/core/option_checks.h"
 
 #include <functional>
 #include <limits>
