@@ -1,7 +1,5 @@
 #include <spdlog/spdlog.h>
 
-#include <nlohmann/json.hpp>
-
 #include "cli_common.h"
 #include "sim_options.h"
 #include "simtree/core/atomic_file.h"
@@ -10,12 +8,11 @@
 #include "simtree/core/units.h"
 #include "simtree/dynamics/recorders.h"
 #include "simtree/dynamics/simulate.h"
+#include "simtree/dynamics/simulation_json.h"
 #include "verbs.h"
 
 namespace simtree::cli {
 namespace {
-
-using ojson = nlohmann::ordered_json;
 
 struct SimulateArgs {
   std::string input, output, parameters, material_file;
@@ -89,7 +86,7 @@ std::vector<Marker> MarkersToTrack(const Tree& tree, const SimulateArgs& args) {
 struct Recorders {
   std::vector<std::unique_ptr<dynamics::FrameRecorder>> owned;
   std::vector<dynamics::FrameRecorder*> all;
-  ojson outputs = ojson::array();
+  std::vector<std::string> outputs;
 };
 
 Recorders MakeRecorders(const std::filesystem::path& dir, const SimulateArgs& args,
@@ -115,58 +112,18 @@ Recorders MakeRecorders(const std::filesystem::path& dir, const SimulateArgs& ar
   return r;
 }
 
-ojson PullJson(const Tree& tree, const dynamics::PullSchedule& pull,
-               const dynamics::SimulationResult& result) {
-  const dynamics::Rope& r = pull.rope;
-  const Eigen::Vector3d& p = result.pull_point;
-  return {{"branch", r.branch},
-          {"arc_length_m", r.arc_length < 0 ? tree.branches[r.branch].Length() : r.arc_length},
-          {"point", {p.x(), p.y(), p.z()}},
-          {"anchor", {r.anchor.x(), r.anchor.y(), r.anchor.z()}},
-          {"mode", ToString(r.mode)},
-          {"force_n", r.force_n},
-          {"displacement_m", r.displacement_m},
-          {"tension_n", result.pull_tension_n},
-          {"hold_s", pull.hold_s},
-          {"release_s", pull.release_s}};
-}
-
 // simulation.json: what was simulated, how, and what was written.
-ojson SimulationJson(const Tree& tree, const SimulateArgs& args,
-                     const dynamics::SimulationResult& result, size_t markers,
-                     const ojson& outputs) {
-  const dynamics::SimulationOptions& sim = args.run.sim;
-  ojson doc;
-  doc["format"] = "simtree.simulation";
-  doc["version"] = 1;
-  doc["tree"] = args.input;
-  if (!args.parameters.empty()) doc["material_file"] = args.parameters;
-  doc["branches"] = tree.size();
-  doc["nodes"] = tree.NodeCount();
-  doc["duration_s"] = sim.duration_s;
-  doc["fps"] = sim.fps;
-  doc["frames"] = result.frames;
-  doc["time_step_s"] = result.time_step_s;
-  doc["steps"] = result.steps;
-  doc["integrator"] = ToString(sim.dynamics.integrator);
-  doc["base_excitation"] = sim.dynamics.base_excitation;
-  doc["transfer_loads"] = sim.dynamics.transfer_loads;
-  doc["gravity"] = sim.dynamics.gravity;
-  doc["demo_mode_spread"] = sim.dynamics.demo_mode_spread;
-  doc["pull"] = sim.pull ? PullJson(tree, *sim.pull, result) : ojson(nullptr);
-  if (sim.dynamics.wind.enabled) {
-    const dynamics::WindOptions& w = sim.dynamics.wind;
-    doc["wind"] = {{"mean_speed_mps", w.mean_speed_mps},
-                   {"heading_deg", args.run.wind_heading_deg},
-                   {"turbulence_intensity", w.turbulence_intensity},
-                   {"length_scale_m", w.length_scale_m},
-                   {"seed", w.seed}};
-  } else {
-    doc["wind"] = nullptr;
-  }
-  doc["markers"] = markers;
-  doc["outputs"] = outputs;
-  return doc;
+dynamics::SimulationJsonContent SimulationRecord(const Tree& tree, const SimulateArgs& args,
+                                                 const dynamics::SimulationResult& result,
+                                                 size_t markers, const Recorders& recorders) {
+  dynamics::SimulationJsonContent content =
+      dynamics::DescribeSimulation(tree, args.run.sim, result);
+  content.tree_file = args.input;
+  content.material_file = args.parameters;
+  content.wind_heading_deg = args.run.wind_heading_deg;
+  content.markers = markers;
+  content.outputs = recorders.outputs;
+  return content;
 }
 
 void Simulate(SimulateArgs& args) {
@@ -187,8 +144,8 @@ void Simulate(SimulateArgs& args) {
   const Recorders recorders = MakeRecorders(folder.path(), args, markers);
   const dynamics::SimulationResult result =
       dynamics::RunSimulation(tree, args.run.sim, recorders.all);
-  const ojson doc = SimulationJson(tree, args, result, markers.size(), recorders.outputs);
-  WriteFileAtomically(folder.path() / "simulation.json", doc.dump(2) + "\n");
+  dynamics::WriteSimulationJson(SimulationRecord(tree, args, result, markers.size(), recorders),
+                                folder.path() / "simulation.json");
   folder.Commit();
   spdlog::info(
       "simulated {} s of {} branches ({} nodes): {} frames, {} steps of {:.4g} s in "

@@ -5,14 +5,13 @@
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
-#include <nlohmann/json.hpp>
 
-#include "simtree/core/atomic_file.h"
 #include "simtree/core/error.h"
 #include "simtree/core/json_util.h"
 #include "simtree/core/tree_json.h"
 #include "simtree/dynamics/recorders.h"
 #include "simtree/dynamics/simulate.h"
+#include "simtree/dynamics/simulation_json.h"
 #include "simtree/identification/materials_file.h"
 #include "simtree/io/trajectories.h"
 #include "simtree/pipeline/detail/placements.h"
@@ -25,7 +24,6 @@
 #include "simtree/viewer/render.h"
 
 namespace fs = std::filesystem;
-using ojson = nlohmann::ordered_json;
 
 namespace simtree::pipeline::detail {
 namespace {
@@ -37,45 +35,23 @@ Eigen::Isometry3d PullCamera(const StageContext& context) {
   return *camera;
 }
 
-ojson Vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
-
 // simulation.json, as `simtree simulate` writes it, plus the pull fit.
-ojson SimulationJson(const Tree& tree, const dynamics::SimulationOptions& sim,
-                     const dynamics::SimulationResult& result, const PullFit& fit, size_t markers) {
-  const dynamics::Rope& r = sim.pull->rope;
-  ojson doc;
-  doc["format"] = "simtree.simulation";
-  doc["version"] = 1;
-  doc["tree"] = "build/simready.json";
-  doc["branches"] = tree.size();
-  doc["nodes"] = tree.NodeCount();
-  doc["duration_s"] = sim.duration_s;
-  doc["fps"] = sim.fps;
-  doc["frames"] = result.frames;
-  doc["time_step_s"] = result.time_step_s;
-  doc["steps"] = result.steps;
-  doc["base_excitation"] = sim.dynamics.base_excitation;
-  doc["transfer_loads"] = sim.dynamics.transfer_loads;
-  doc["gravity"] = sim.dynamics.gravity;
-  doc["pull"] = {{"branch", r.branch},
-                 {"arc_length_m", r.arc_length},
-                 {"point", Vec(result.pull_point)},
-                 {"anchor", Vec(r.anchor)},
-                 {"mode", ToString(r.mode)},
-                 {"force_n", r.force_n},
-                 {"displacement_m", 0.0},
-                 {"tension_n", result.pull_tension_n},
-                 {"hold_s", sim.pull->hold_s},
-                 {"release_s", sim.pull->release_s}};
-  doc["pull_fit"] = {{"force", Vec(fit.force)},
-                     {"residual_rms_m", fit.residual_rms_m},
-                     {"observed_rms_m", fit.observed_rms_m},
-                     {"markers", fit.markers},
-                     {"candidates", fit.candidates}};
-  doc["wind"] = nullptr;
-  doc["markers"] = markers;
-  doc["outputs"] = {"nodes.bin", "markers.csv", "markers.json", "animation.glb", "simulation.json"};
-  return doc;
+dynamics::SimulationJsonContent SimulationRecord(const Tree& tree,
+                                                 const dynamics::SimulationOptions& sim,
+                                                 const dynamics::SimulationResult& result,
+                                                 const PullFit& fit) {
+  dynamics::SimulationJsonContent content = dynamics::DescribeSimulation(tree, sim, result);
+  content.tree_file = "build/simready.json";
+  content.record_model = false;
+  content.pull_fit = dynamics::PullFitRecord{.force = fit.force,
+                                             .residual_rms_m = fit.residual_rms_m,
+                                             .observed_rms_m = fit.observed_rms_m,
+                                             .markers = fit.markers,
+                                             .candidates = fit.candidates};
+  content.markers = tree.markers.size();
+  content.outputs = {"nodes.bin", "markers.csv", "markers.json", "animation.glb",
+                     "simulation.json"};
+  return content;
 }
 
 // The run simulate wrote: its schedule and length, read back from simulation.json.
@@ -135,8 +111,7 @@ std::string RunSimulateStage(const StageContext& context) {
   dynamics::AnimationRecorder animation(dir / "animation.glb", tree.markers);
   dynamics::FrameRecorder* recorders[] = {&nodes, &markers, &animation};
   const dynamics::SimulationResult result = dynamics::RunSimulation(tree, sim, recorders);
-  WriteFileAtomically(dir / "simulation.json",
-                      SimulationJson(tree, sim, result, fit, tree.markers.size()).dump(2) + "\n");
+  dynamics::WriteSimulationJson(SimulationRecord(tree, sim, result, fit), dir / "simulation.json");
   return fmt::format(
       "pull {:.1f} N on branch {} at {:.2f} m (fit {:.1f} of {:.1f} mm RMS on {} markers), "
       "held {:.2f} s, released {:.2f} s; {} frames",
