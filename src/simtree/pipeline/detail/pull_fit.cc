@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 
 #include "simtree/core/error.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/dynamics/tree_dynamics.h"
 
 namespace simtree::pipeline::detail {
@@ -119,8 +120,8 @@ double HoldStart(const Trajectories& tracks, const std::vector<Observation>& obs
 }  // namespace
 
 void PullFitOptions::Validate() const {
-  auto check = [](bool ok, const char* field, const std::string& message) {
-    if (!ok) throw InputError(kSource, field, message);
+  const auto check = [](bool ok, const char* field, const std::string& message) {
+    CheckOption(ok, kSource, field, message);
   };
   check(rest_s > 0 && std::isfinite(rest_s), "rest_s", "expected seconds > 0");
   check(held_window_s > 0 && std::isfinite(held_window_s), "held_window_s", "expected seconds > 0");
