@@ -71,7 +71,16 @@ ojson SimulationJson(const Tree& tree, const dynamics::SimulationOptions& sim,
                      {"residual_rms_m", fit.residual_rms_m},
                      {"observed_rms_m", fit.observed_rms_m},
                      {"markers", fit.markers},
-                     {"candidates", fit.candidates}};
+                     {"candidates", fit.candidates},
+                     {"detected_release_s", fit.detected_release_s}};
+  if (fit.motion.fitted) {
+    doc["pull_fit"]["motion"] = {{"release_s", fit.motion.release_s},
+                                 {"time_step_s", fit.motion.time_step_s},
+                                 {"residual_rms_m", fit.motion.residual_rms_m},
+                                 {"observed_rms_m", fit.motion.observed_rms_m},
+                                 {"markers", fit.motion.markers},
+                                 {"samples", fit.motion.samples}};
+  }
   doc["wind"] = nullptr;
   doc["markers"] = markers;
   doc["outputs"] = {"nodes.bin", "markers.csv", "markers.json", "animation.glb", "simulation.json"};
@@ -128,6 +137,7 @@ std::string RunSimulateStage(const StageContext& context) {
   sim.duration_s = tracks.times_s.back();
   sim.fps = materials.frame_rate_hz > 0 ? materials.frame_rate_hz : 30.0;
   sim.pull = fit.Schedule(fit_options.anchor_distance_m);
+  if (fit.motion.fitted) sim.max_time_step_s = fit.motion.time_step_s;  // the step it was fitted at
   dynamics::ValidateSimulation(tree, sim);
   const fs::path& dir = context.out_dir;
   dynamics::NodeFrameWriter nodes(dir / "nodes.bin");
@@ -137,11 +147,17 @@ std::string RunSimulateStage(const StageContext& context) {
   const dynamics::SimulationResult result = dynamics::RunSimulation(tree, sim, recorders);
   WriteFileAtomically(dir / "simulation.json",
                       SimulationJson(tree, sim, result, fit, tree.markers.size()).dump(2) + "\n");
+  const MotionFit& motion = fit.motion;
   return fmt::format(
-      "pull {:.1f} N on branch {} at {:.2f} m (fit {:.1f} of {:.1f} mm RMS on {} markers), "
-      "held {:.2f} s, released {:.2f} s; {} frames",
+      "pull {:.1f} N on branch {} at {:.2f} m (held pose fit {:.1f} of {:.1f} mm RMS, motion fit "
+      "{} of {} mm RMS on {} markers), held {:.2f} s, released {:.3f} s (detected {:.3f} s); {} "
+      "frames",
       fit.force.norm(), fit.branch, fit.arc_length, 1e3 * fit.residual_rms_m,
-      1e3 * fit.observed_rms_m, fit.markers, fit.hold_s, fit.release_s, result.frames);
+      1e3 * fit.observed_rms_m,
+      motion.fitted ? fmt::format("{:.1f}", 1e3 * motion.residual_rms_m) : "-",
+      motion.fitted ? fmt::format("{:.1f}", 1e3 * motion.observed_rms_m) : "-",
+      motion.fitted ? motion.markers : fit.markers, fit.hold_s, fit.release_s,
+      fit.detected_release_s, result.frames);
 }
 
 std::string RunRenderStage(const StageContext& context) {
