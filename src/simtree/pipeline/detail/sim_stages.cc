@@ -1,6 +1,7 @@
 // The simulation side: build (the simulation-ready tree with the placed markers), simulate (the
 // capture's pull, replayed), render (beside the capture's frames), report.
 
+#include <cmath>
 #include <memory>
 
 #include <fmt/format.h>
@@ -15,6 +16,7 @@
 #include "simtree/dynamics/simulate.h"
 #include "simtree/identification/materials_file.h"
 #include "simtree/io/trajectories.h"
+#include "simtree/pipeline/detail/branch_stiffness.h"
 #include "simtree/pipeline/detail/placements.h"
 #include "simtree/pipeline/detail/pull_fit.h"
 #include "simtree/pipeline/detail/stage_functions.h"
@@ -87,6 +89,29 @@ ojson SimulationJson(const Tree& tree, const dynamics::SimulationOptions& sim,
   return doc;
 }
 
+// build/calibration.json: the stiffness factor chosen and every factor tried.
+ojson CalibrationJson(const StiffnessCalibration& calibration) {
+  ojson trials = ojson::array();
+  for (const StiffnessTrial& t : calibration.trials) {
+    trials.push_back({{"factor", t.factor},
+                      {"replay_residual_rms_m",
+                       std::isfinite(t.residual_rms_m) ? ojson(t.residual_rms_m) : ojson()}});
+  }
+  return {{"format", "simtree.stiffness_calibration"},
+          {"version", 1},
+          {"levels", "branches of level >= 1 (every branch above the trunk)"},
+          {"frequency_factor", calibration.factor},
+          {"stiffness_factor", calibration.factor * calibration.factor},
+          {"trials", trials}};
+}
+
+double ChosenResidual(const StiffnessCalibration& calibration) {
+  for (const StiffnessTrial& t : calibration.trials) {
+    if (t.factor == calibration.factor) return t.residual_rms_m;
+  }
+  return std::nan("");
+}
+
 // The run simulate wrote: its schedule and length, read back from simulation.json.
 dynamics::SimulationOptions SimulationFromJson(const fs::path& path) {
   const JsonDocument file = ReadJsonDocument(path);
@@ -116,11 +141,21 @@ std::string RunBuildStage(const StageContext& context) {
   const identification::MaterialsFile materials =
       identification::ReadMaterialsJson(context.Result("identify/materials.json"));
   simready::BuildReport report;
-  const Tree tree = simready::BuildSimulationReadyTree(static_tree, materials, {}, &report);
+  const Tree identified = simready::BuildSimulationReadyTree(static_tree, materials, {}, &report);
+  const Trajectories tracks = ReadTrajectoriesCsv(context.Result("track/trajectories.csv"));
+  const StiffnessCalibration calibration =
+      CalibrateBranchStiffness(identified, tracks, PullCamera(context), materials.release_time_s,
+                               placements.held_out, PullFitOptions{});
+  const Tree tree = StiffenBranches(identified, calibration.factor);
   WriteTreeJson(tree, context.out_dir / "simready.json");
-  return fmt::format("{} branches: {} measured, {} interpolated; {} markers; {:.1f} kg",
-                     tree.size(), report.measured, report.interpolated, tree.markers.size(),
-                     report.total_mass_kg);
+  WriteFileAtomically(context.out_dir / "calibration.json",
+                      CalibrationJson(calibration).dump(2) + "\n");
+  return fmt::format(
+      "{} branches: {} measured, {} interpolated; {} markers; {:.1f} kg; branches above the "
+      "trunk x{:.2f} in frequency to replay the pull ({:.1f} mm RMS; x{:.2f}: {:.1f} mm)",
+      tree.size(), report.measured, report.interpolated, tree.markers.size(),
+      report.total_mass_kg, calibration.factor, 1e3 * ChosenResidual(calibration),
+      calibration.trials.front().factor, 1e3 * calibration.trials.front().residual_rms_m);
 }
 
 std::string RunSimulateStage(const StageContext& context) {
