@@ -92,6 +92,22 @@ TEST(Validate, Markers) {
   EXPECT_THAT(FirstProblem(t), HasSubstr("markers[1].parent"));
 }
 
+// Marker ids are the tracker's: a marker never seen leaves a gap, which is fine; a repeated or
+// negative id, or a parent that is not on the tree, is not.
+TEST(Validate, MarkerIdsAreUniqueNotConsecutive) {
+  Tree t = test::SmallTreeWithMaterials();
+  ASSERT_GE(t.markers.size(), 2u);
+  t.markers.back().id = 7;
+  EXPECT_TRUE(FindProblems(t).empty()) << FirstProblem(t);
+  t.markers.back().id = t.markers.front().id;
+  EXPECT_THAT(FirstProblem(t), HasSubstr("appears twice"));
+  t.markers.back().id = -2;
+  EXPECT_THAT(FirstProblem(t), HasSubstr("expected an id >= 0"));
+  t = test::SmallTreeWithMaterials();
+  t.markers.back().parent = 42;
+  EXPECT_THAT(FirstProblem(t), HasSubstr(".parent: expected -1 or the id of another marker"));
+}
+
 TEST(Validate, ThrowsInputErrorWithSourceAndCount) {
   Tree t = test::SmallTree();
   t.branches[2].nodes[1].radius = -0.1;

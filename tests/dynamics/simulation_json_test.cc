@@ -75,7 +75,7 @@ TEST(SimulationJson, OptionalKeysFollowTheContent) {
   SimulationJsonContent content = PulledTrunk(tree);
   content.material_file = "tree_parameters.txt";
   content.record_model = false;
-  content.pull_fit = PullFitRecord{.force = Eigen::Vector3d(1, 2, 3), .markers = 4};
+  content.pull_fit = {{"force", {1.0, 2.0, 3.0}}, {"markers", 4}};
   content.options.dynamics.wind.enabled = true;
   content.wind_heading_deg = 90.0;
   const auto doc = SimulationJson(content);

@@ -1,6 +1,7 @@
 #include "simtree/core/validate.h"
 
 #include <cmath>
+#include <set>
 
 #include <fmt/format.h>
 #include <Eigen/Geometry>
@@ -153,12 +154,18 @@ std::vector<ValidationProblem> FindProblems(const Tree& tree, const ValidationOp
       problems.Add(at + ".material", "expected a material (this tree must be simulation-ready)");
     }
   }
+  // Ids are the tracker's: unique and >= 0, not necessarily 0..n-1 (a marker never seen is not
+  // on the tree).
+  std::set<int> ids;
+  for (const Marker& marker : tree.markers) ids.insert(marker.id);
+  std::set<int> seen;
   for (size_t m = 0; m < tree.markers.size(); ++m) {
     const Marker& marker = tree.markers[m];
     const std::string at = fmt::format("markers[{}]", m);
-    if (marker.id != static_cast<int>(m)) {
-      problems.Add(at + ".id",
-                   fmt::format("expected id {} (ids are the marker order), got {}", m, marker.id));
+    if (marker.id < 0) {
+      problems.Add(at + ".id", fmt::format("expected an id >= 0, got {}", marker.id));
+    } else if (!seen.insert(marker.id).second) {
+      problems.Add(at + ".id", fmt::format("marker id {} appears twice", marker.id));
     }
     if (marker.branch < 0 || marker.branch >= tree.size()) {
       problems.Add(at + ".branch", fmt::format("expected a branch id in [0, {}], got {}",
@@ -173,8 +180,7 @@ std::vector<ValidationProblem> FindProblems(const Tree& tree, const ValidationOp
                                  length, marker.branch, marker.arc_length));
       }
     }
-    if (marker.parent < -1 || marker.parent >= static_cast<int>(tree.markers.size()) ||
-        marker.parent == static_cast<int>(m)) {
+    if (marker.parent != -1 && (marker.parent == marker.id || !ids.count(marker.parent))) {
       problems.Add(at + ".parent",
                    fmt::format("expected -1 or the id of another marker, got {}", marker.parent));
     }

@@ -25,14 +25,6 @@ ojson PullJson(const PullSchedule& pull, const SimulationResult& result) {
           {"release_s", pull.release_s}};
 }
 
-ojson PullFitJson(const PullFitRecord& fit) {
-  return {{"force", Vec(fit.force)},
-          {"residual_rms_m", fit.residual_rms_m},
-          {"observed_rms_m", fit.observed_rms_m},
-          {"markers", fit.markers},
-          {"candidates", fit.candidates}};
-}
-
 ojson WindJson(const WindOptions& wind, double heading_deg) {
   if (!wind.enabled) return nullptr;
   return {{"mean_speed_mps", wind.mean_speed_mps},
@@ -81,7 +73,7 @@ ojson SimulationJson(const SimulationJsonContent& content) {
   doc["gravity"] = sim.dynamics.gravity;
   if (content.record_model) doc["demo_mode_spread"] = sim.dynamics.demo_mode_spread;
   doc["pull"] = sim.pull ? PullJson(*sim.pull, result) : ojson(nullptr);
-  if (content.pull_fit) doc["pull_fit"] = PullFitJson(*content.pull_fit);
+  if (!content.pull_fit.is_null()) doc["pull_fit"] = content.pull_fit;
   doc["wind"] = WindJson(sim.dynamics.wind, content.wind_heading_deg);
   doc["markers"] = content.markers;
   doc["outputs"] = content.outputs;

@@ -18,15 +18,6 @@
 
 namespace simtree::dynamics {
 
-// The pull force a run fitted to the tracked markers, recorded beside the pull that replays it.
-struct PullFitRecord {
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // N, world
-  double residual_rms_m = 0.0;  // m: of the markers' held displacements against the fit
-  double observed_rms_m = 0.0;  // m: of the held displacements themselves
-  int markers = 0;              // markers the fit used
-  int candidates = 0;           // rope points tried
-};
-
 // What simulation.json records. DescribeSimulation fills the run's part; the caller names the
 // files and adds what only it knows.
 struct SimulationJsonContent {
@@ -40,7 +31,8 @@ struct SimulationJsonContent {
   // defaults, leaves them out.
   bool record_model = true;
   double wind_heading_deg = 0.0;          // deg: the wind's heading as given (with the wind on)
-  std::optional<PullFitRecord> pull_fit;  // none: no "pull_fit" key
+  // The run's fit of the pull it replays, written after "pull" as given (null: no key).
+  nlohmann::ordered_json pull_fit;
   size_t markers = 0;                     // markers tracked
   std::vector<std::string> outputs;       // the files written, simulation.json included
 };

@@ -37,7 +37,12 @@ std::vector<Stage> MakeTable() {
          return ojson{{"held_out_markers", o.held_out_markers}};
        },
        RunIdentifyStage},
-      {"build", {"reconstruct/static.json", "identify"}, {"build"}, NoOptions, RunBuildStage},
+      {"build",
+       {"reconstruct/static.json", "identify", "track/trajectories.csv",
+        "register/pull_camera.json"},
+       {"build"},
+       NoOptions,
+       RunBuildStage},
       {"simulate",
        {"build/simready.json", "track/trajectories.csv", "identify", "register/pull_camera.json"},
        {"simulate"},

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include <fmt/format.h>
 #include <Eigen/Dense>
@@ -15,15 +14,6 @@ namespace simtree::pipeline::detail {
 namespace {
 
 constexpr const char* kSource = "pull fit options";
-
-// A marker the fit uses: where it is on the tree and how far it moved while held (world).
-struct Observation {
-  int branch = 0;
-  double arc_length = 0.0;
-  Eigen::Vector3d held = Eigen::Vector3d::Zero();
-  const MarkerTrack* track = nullptr;
-  Eigen::Vector3d rest_camera = Eigen::Vector3d::Zero();
-};
 
 // Mean of the valid positions with time in [t0, t1]; false when there is none.
 bool MeanPosition(const Trajectories& tracks, const MarkerTrack& track, double t0, double t1,
@@ -41,17 +31,17 @@ bool MeanPosition(const Trajectories& tracks, const MarkerTrack& track, double t
   return true;
 }
 
-std::vector<Observation> Observe(const Tree& tree, const Trajectories& tracks,
+std::vector<PullObservation> Observe(const Tree& tree, const Trajectories& tracks,
                                  const Eigen::Isometry3d& world_from_camera, double release_s,
                                  const std::vector<int>& excluded, const PullFitOptions& o) {
   const double start = tracks.times_s.front();
   const double held_end = release_s - o.release_margin_s;
-  std::vector<Observation> out;
+  std::vector<PullObservation> out;
   for (const Marker& m : tree.markers) {
     if (std::find(excluded.begin(), excluded.end(), m.id) != excluded.end()) continue;
     const MarkerTrack* track = tracks.Find(m.id);
     if (!track) continue;
-    Observation obs{m.branch, m.arc_length, Eigen::Vector3d::Zero(), track, {}};
+    PullObservation obs{m.branch, m.arc_length, Eigen::Vector3d::Zero(), track, {}};
     Eigen::Vector3d held;
     if (!MeanPosition(tracks, *track, start, start + o.rest_s, obs.rest_camera) ||
         !MeanPosition(tracks, *track, held_end - o.held_window_s, held_end, held)) {
@@ -79,7 +69,7 @@ std::vector<std::pair<int, double>> Candidates(const Tree& tree, const PullFitOp
 
 // The static displacement (3 rows each) per newton along x, y and z at the rope point: of every
 // marker, then of the rope point itself (the last 3 rows).
-Eigen::MatrixXd Compliance(dynamics::TreeDynamics& sim, const std::vector<Observation>& obs,
+Eigen::MatrixXd Compliance(dynamics::TreeDynamics& sim, const std::vector<PullObservation>& obs,
                            int branch, double arc_length) {
   Eigen::MatrixXd c(3 * obs.size() + 3, 3);
   const Eigen::Vector3d point = sim.tree().branches[branch].PointAt(arc_length);
@@ -102,7 +92,7 @@ Eigen::MatrixXd Compliance(dynamics::TreeDynamics& sim, const std::vector<Observ
 }
 
 // When the most-moved marker first reaches `fraction` of its held displacement.
-double HoldStart(const Trajectories& tracks, const std::vector<Observation>& obs,
+double HoldStart(const Trajectories& tracks, const std::vector<PullObservation>& obs,
                  const Eigen::Isometry3d& world_from_camera, double release_s, double fraction) {
   const auto most = std::max_element(obs.begin(), obs.end(), [](const auto& a, const auto& b) {
     return a.held.norm() < b.held.norm();
@@ -115,6 +105,34 @@ double HoldStart(const Trajectories& tracks, const std::vector<Observation>& obs
     if (d.norm() >= target) return tracks.times_s[f];
   }
   return 0.8 * release_s;
+}
+
+
+// Every candidate rope point whose least-squares force explains the held displacements within
+// the limits, best (smallest residual) first.
+std::vector<PullCandidate> RankCandidates(const Tree& tree,
+                                          const std::vector<PullObservation>& obs,
+                                          const Eigen::VectorXd& held, const PullFitOptions& o) {
+  dynamics::TreeDynamics sim(tree);
+  double largest = 0.0;
+  for (const PullObservation& ob : obs) largest = std::max(largest, ob.held.norm());
+  const auto rows = static_cast<Eigen::Index>(held.size());
+  std::vector<PullCandidate> out;
+  for (const auto& [branch, arc] : Candidates(tree, o)) {
+    const Eigen::MatrixXd all = Compliance(sim, obs, branch, arc);
+    const Eigen::MatrixXd c = all.topRows(rows);
+    const Eigen::Vector3d force = c.colPivHouseholderQr().solve(held);
+    const double point_moves = (all.bottomRows(3) * force).norm();
+    if (!force.allFinite() || force.norm() > o.max_force_n ||
+        point_moves > o.max_point_displacement_factor * largest) {
+      continue;
+    }
+    out.push_back({branch, arc, force, (c * force - held).norm()});
+  }
+  std::stable_sort(out.begin(), out.end(), [](const PullCandidate& a, const PullCandidate& b) {
+    return a.static_residual_m < b.static_residual_m;
+  });
+  return out;
 }
 
 }  // namespace
@@ -138,6 +156,15 @@ void PullFitOptions::Validate() const {
   check(anchor_distance_m > 0 && std::isfinite(anchor_distance_m), "anchor_distance_m",
         "expected metres > 0");
   check(hold_fraction > 0 && hold_fraction <= 1, "hold_fraction", "expected a share in (0, 1]");
+  check(motion_candidates >= 0, "motion_candidates", "expected a count >= 0");
+  check(motion.window_s > 0 && std::isfinite(motion.window_s), "motion.window_s",
+        "expected seconds > 0");
+  check(motion.max_release_shift_s >= 0 && std::isfinite(motion.max_release_shift_s),
+        "motion.max_release_shift_s", "expected seconds >= 0");
+  check(motion.outlier_factor > 1 && std::isfinite(motion.outlier_factor),
+        "motion.outlier_factor", "expected a factor > 1");
+  check(motion.outlier_share > 0 && std::isfinite(motion.outlier_share), "motion.outlier_share",
+        "expected a share > 0");
 }
 
 dynamics::PullSchedule PullFit::Schedule(double anchor_distance_m) const {
@@ -156,60 +183,56 @@ PullFit FitPull(const Tree& tree, const Trajectories& tracks,
                 const std::vector<int>& excluded, const PullFitOptions& options) {
   options.Validate();
   if (tracks.frame_count() < 2) throw InputError("trajectories", "", "expected two frames or more");
-  const std::vector<Observation> obs =
+  const std::vector<PullObservation> obs =
       Observe(tree, tracks, world_from_camera, release_s, excluded, options);
   if (obs.empty()) {
     throw InputError("trajectories", "",
                      "no marker of the tree has a tracked rest and held position to fit the "
                      "pull to");
   }
-  Eigen::VectorXd d(3 * obs.size());
-  for (size_t i = 0; i < obs.size(); ++i) d.segment<3>(3 * i) = obs[i].held;
-  const double observed = std::sqrt(d.squaredNorm() / obs.size());
+  Eigen::VectorXd held(3 * obs.size());
+  for (size_t i = 0; i < obs.size(); ++i) held.segment<3>(3 * i) = obs[i].held;
+  const double observed = std::sqrt(held.squaredNorm() / obs.size());
   if (!(observed > 1e-4)) {
     throw InputError("trajectories", "",
                      fmt::format("the markers barely moved while held ({:.2f} mm RMS): no pull "
                                  "to fit",
                                  1e3 * observed));
   }
-  dynamics::TreeDynamics sim(tree);
-  PullFit best;
-  double best_residual = std::numeric_limits<double>::infinity();
-  const auto candidates = Candidates(tree, options);
-  double largest = 0.0;
-  for (const Observation& o : obs) largest = std::max(largest, o.held.norm());
-  const auto rows = static_cast<Eigen::Index>(d.size());
-  for (const auto& [branch, arc] : candidates) {
-    const Eigen::MatrixXd all = Compliance(sim, obs, branch, arc);
-    const Eigen::MatrixXd c = all.topRows(rows);
-    const Eigen::Vector3d force = c.colPivHouseholderQr().solve(d);
-    const double residual = (c * force - d).norm();
-    const double point_moves = (all.bottomRows(3) * force).norm();
-    if (!force.allFinite() || force.norm() > options.max_force_n ||
-        point_moves > options.max_point_displacement_factor * largest ||
-        residual >= best_residual) {
-      continue;
-    }
-    best_residual = residual;
-    best.branch = branch;
-    best.arc_length = arc;
-    best.force = force;
-  }
-  if (!std::isfinite(best_residual)) {
+  const std::vector<PullCandidate> ranked = RankCandidates(tree, obs, held, options);
+  if (ranked.empty()) {
     throw InputError("simready tree", "",
                      fmt::format("no branch point explains the held displacements with a force "
                                  "of at most {} N moving its point at most {} times the markers' "
                                  "largest displacement",
                                  options.max_force_n, options.max_point_displacement_factor));
   }
-  best.point = tree.branches[best.branch].PointAt(best.arc_length);
-  best.residual_rms_m = best_residual / std::sqrt(static_cast<double>(obs.size()));
-  best.observed_rms_m = observed;
-  best.markers = static_cast<int>(obs.size());
-  best.candidates = static_cast<int>(candidates.size());
-  best.release_s = release_s;
-  best.hold_s = HoldStart(tracks, obs, world_from_camera, release_s, options.hold_fraction);
-  return best;
+  PullFit fit;
+  fit.branch = ranked.front().branch;
+  fit.arc_length = ranked.front().arc_length;
+  fit.force = ranked.front().force;
+  fit.residual_rms_m = ranked.front().static_residual_m / std::sqrt(static_cast<double>(obs.size()));
+  fit.observed_rms_m = observed;
+  fit.markers = static_cast<int>(obs.size());
+  fit.candidates = static_cast<int>(Candidates(tree, options).size());
+  fit.detected_release_s = fit.release_s = release_s;
+  fit.hold_s = HoldStart(tracks, obs, world_from_camera, release_s, options.hold_fraction);
+
+  const std::vector<PullCandidate> best(
+      ranked.begin(),
+      ranked.begin() + std::min<size_t>(ranked.size(), options.motion_candidates));
+  fit.motion = FitPullOnMotion(tree, tracks, world_from_camera, obs, best, fit.hold_s, release_s,
+                               options.max_force_n, options.motion);
+  if (fit.motion.fitted) {
+    fit.branch = fit.motion.candidate.branch;
+    fit.arc_length = fit.motion.candidate.arc_length;
+    fit.force = fit.motion.candidate.force;
+    // Half a step early, so the replay lets go at the step boundary the fit chose.
+    fit.release_s = fit.motion.release_s - 0.5 * fit.motion.time_step_s;
+    fit.hold_s = std::min(fit.hold_s, fit.release_s);
+  }
+  fit.point = tree.branches[fit.branch].PointAt(fit.arc_length);
+  return fit;
 }
 
 }  // namespace simtree::pipeline::detail
