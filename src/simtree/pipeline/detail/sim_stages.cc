@@ -5,6 +5,7 @@
 #include <memory>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
 #include "simtree/core/atomic_file.h"
@@ -27,6 +28,7 @@
 #include "simtree/viewer/render.h"
 
 namespace fs = std::filesystem;
+using ojson = nlohmann::ordered_json;
 
 namespace simtree::pipeline::detail {
 namespace {
