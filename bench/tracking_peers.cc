@@ -7,11 +7,13 @@
 //
 // Each peer starts from pull/init.json's pixel of each marker with a box of the size of the
 // marker's true box in the init frame (gt/markers_2d.json, when the capture has it; else
-// --init-box px square), the best start a peer can be given. Every frame is tracked on one
-// thread (cv::setNumThreads(1)). A peer's 3D centre is the median valid depth inside the central
-// third of its box, back-projected at the box centre with the intrinsics; a failed update is
-// state lost, no position. Our tracker (the library's per-frame step, as `simtree track` runs it)
-// is stepped over the same frames for its frames/s; its outputs come from `simtree track`.
+// --init-box px square), the best start a peer can be given. With --min-box N each tracker's box
+// is grown to at least N px about the same centre (context for trackers built for larger
+// targets) and the box reported is the marker's size about its centre. Every frame is tracked on
+// one thread (cv::setNumThreads(1)). A peer's 3D centre is the median valid depth inside the
+// central third of its box, back-projected at the box centre with the intrinsics; a failed update
+// is state lost, no position. Our tracker (the library's per-frame step, as `simtree track` runs
+// it) is stepped over the same frames for its frames/s; its outputs come from `simtree track`.
 //
 // Frames/s: CPU time of the tracking calls of each tracker alone (this thread's clock), frames
 // decoded beforehand and not counted. Printed per tracker and written to <out>/speed.json.
@@ -19,6 +21,7 @@
 #include <time.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -63,6 +66,7 @@ struct Args {
   std::vector<std::string> trackers = {"csrt", "kcf"};
   bool time_ours = true;
   double init_box_px = 8.0;  // box side when the capture has no gt/markers_2d.json (px)
+  double min_box_px = 0.0;   // the trackers' boxes grown to at least this side (px), 0: as is
 };
 
 // One marker followed by one OpenCV tracker.
@@ -70,6 +74,7 @@ struct PeerMarker {
   int id = 0;
   cv::Ptr<cv::Tracker> tracker;  // null when the marker could not be started
   cv::Rect box;                  // the last box the tracker gave (OpenCV's integer pixels)
+  cv::Size2d size;               // the marker's box size reported about the tracker box's centre
 };
 
 struct PeerRun {
@@ -128,14 +133,20 @@ cv::Rect RectAround(const Eigen::Vector2d& centre, const cv::Size2d& size) {
           static_cast<int>(std::lround(centre.y() - 0.5 * (h - 1))), w, h};
 }
 
-// The 3D centre of a box: the median valid depth in its central third (at least its centre
-// pixel), back-projected at the box centre. Empty when no pixel there has depth.
-std::optional<Eigen::Vector3d> BoxCentre3d(const cv::Rect& box, const DepthImage& depth,
-                                           const CameraIntrinsics& k) {
-  const double cx = box.x + 0.5 * (box.width - 1), cy = box.y + 0.5 * (box.height - 1);
-  const int x0 = std::max(0, box.x + box.width / 3), y0 = std::max(0, box.y + box.height / 3);
-  const int x1 = std::min(depth.width - 1, std::max(x0, box.x + (2 * box.width) / 3 - 1));
-  const int y1 = std::min(depth.height - 1, std::max(y0, box.y + (2 * box.height) / 3 - 1));
+// The 3D centre of a box [x, y, w, h] (pixel centres at integers): the median valid depth of
+// the pixels in its central third (at least its centre pixel), back-projected at the box centre.
+// Empty when no pixel there has depth.
+std::optional<Eigen::Vector3d> BoxCentre3d(const std::array<double, 4>& box,
+                                           const DepthImage& depth, const CameraIntrinsics& k) {
+  const double cx = box[0] + 0.5 * box[2], cy = box[1] + 0.5 * box[3];
+  const auto range = [](double lo, double len, double centre, int size) {
+    int a = static_cast<int>(std::ceil(lo + len / 3)),
+        b = static_cast<int>(std::floor(lo + 2 * len / 3));
+    if (a > b) a = b = static_cast<int>(std::lround(centre));
+    return std::pair<int, int>(std::max(a, 0), std::min(b, size - 1));
+  };
+  const auto [x0, x1] = range(box[0], box[2], cx, depth.width);
+  const auto [y0, y1] = range(box[1], box[3], cy, depth.height);
   std::vector<uint16_t> values;
   for (int y = y0; y <= y1; ++y) {
     for (int x = x0; x <= x1; ++x) {
@@ -147,12 +158,17 @@ std::optional<Eigen::Vector3d> BoxCentre3d(const cv::Rect& box, const DepthImage
   return k.Unproject(cx, cy, values[values.size() / 2] * k.depth_scale_m);
 }
 
+// The reported box: the marker's size about the centre of the tracker's box.
+std::array<double, 4> ReportedBox(const PeerMarker& m) {
+  const double cx = m.box.x + 0.5 * (m.box.width - 1), cy = m.box.y + 0.5 * (m.box.height - 1);
+  return {cx - 0.5 * m.size.width, cy - 0.5 * m.size.height, m.size.width, m.size.height};
+}
+
 tracking::MarkerBox ToMarkerBox(const PeerMarker& m, bool ok) {
   tracking::MarkerBox b;
   b.marker = m.id;
-  b.box = {m.box.x - 0.5, m.box.y - 0.5, static_cast<double>(m.box.width),
-           static_cast<double>(m.box.height)};
-  b.center = {m.box.x + 0.5 * (m.box.width - 1), m.box.y + 0.5 * (m.box.height - 1)};
+  b.box = ReportedBox(m);
+  b.center = {b.box[0] + 0.5 * b.box[2], b.box[1] + 0.5 * b.box[3]};
   b.state = ok ? tracking::MarkerState::kTracked : tracking::MarkerState::kLost;
   b.confidence = ok ? 1.0 : 0.0;
   return b;
@@ -160,11 +176,17 @@ tracking::MarkerBox ToMarkerBox(const PeerMarker& m, bool ok) {
 
 // Starts one tracker per marker on the init frame (timed with the updates).
 void StartPeer(PeerRun& run, const cv::Mat& bgr, const TrackInit& init,
-               const std::map<int, cv::Size2d>& sizes) {
+               const std::map<int, cv::Size2d>& sizes, double min_box_px) {
   for (size_t i = 0; i < init.markers.size(); ++i) {
     const MarkerPixel& p = init.markers[i];
     PeerMarker& m = run.markers[i];
-    m.box = RectAround(p.pixel, sizes.at(p.id));
+    const cv::Size2d size = sizes.at(p.id);
+    // The marker's own size, rounded as the tracker's box will be, unless the box is grown.
+    m.size = min_box_px > 0 ? size
+                            : cv::Size2d(std::max(1.0, std::round(size.width)),
+                                         std::max(1.0, std::round(size.height)));
+    m.box = RectAround(
+        p.pixel, cv::Size2d(std::max(size.width, min_box_px), std::max(size.height, min_box_px)));
     try {
       m.tracker = MakeTracker(run.name);
       m.tracker->init(bgr, m.box);
@@ -203,7 +225,7 @@ void StepPeer(PeerRun& run, const cv::Mat& bgr, const RgbdImage& image, const Pu
   std::vector<bool> valid;
   for (size_t i = 0; i < run.markers.size(); ++i) {
     boxes.markers.push_back(ToMarkerBox(run.markers[i], ok[i]));
-    const auto p = ok[i] ? BoxCentre3d(run.markers[i].box, image.depth, image.intrinsics)
+    const auto p = ok[i] ? BoxCentre3d(ReportedBox(run.markers[i]), image.depth, image.intrinsics)
                          : std::nullopt;
     positions.push_back(p.value_or(Eigen::Vector3d::Constant(std::nan(""))));
     valid.push_back(p.has_value());
@@ -217,10 +239,10 @@ void SkipPeer(PeerRun& run, const PullFrame& frame) {
   tracking::FrameBoxes boxes{.frame = frame.frame, .markers = {}};
   for (const PeerMarker& m : run.markers) boxes.markers.push_back(ToMarkerBox(m, false));
   run.boxes.push_back(std::move(boxes));
-  run.trajectories.AddFrame(frame.frame, frame.time_s,
-                            std::vector<Eigen::Vector3d>(run.markers.size(),
-                                                         Eigen::Vector3d::Constant(std::nan(""))),
-                            std::vector<bool>(run.markers.size(), false));
+  run.trajectories.AddFrame(
+      frame.frame, frame.time_s,
+      std::vector<Eigen::Vector3d>(run.markers.size(), Eigen::Vector3d::Constant(std::nan(""))),
+      std::vector<bool>(run.markers.size(), false));
 }
 
 // Our tracker's per-frame step over the same frames, timed the same way.
@@ -251,19 +273,22 @@ void StepOurs(OursRun& ours, const RgbdImage& image, const TrackInit& init, doub
 double Rate(int frames, double seconds) { return seconds > 0 ? frames / seconds : 0.0; }
 
 void WriteOutputs(const Args& args, const std::vector<PeerRun>& runs, const OursRun& ours) {
-  nlohmann::json speed = {{"capture", args.capture.string()}, {"trackers", nlohmann::json::object()}};
+  nlohmann::json speed = {{"capture", args.capture.string()},
+                          {"trackers", nlohmann::json::object()}};
   for (const PeerRun& run : runs) {
     const fs::path dir = args.out / run.name;
     fs::create_directories(dir);
     tracking::WriteBoxesCsv(run.boxes, dir / "boxes.csv");
     WriteTrajectoriesCsv(run.trajectories, dir / "trajectories.csv");
-    speed["trackers"][run.name] = {{"frames", run.frames}, {"cpu_s", run.cpu_s},
+    speed["trackers"][run.name] = {{"frames", run.frames},
+                                   {"cpu_s", run.cpu_s},
                                    {"frames_per_s", Rate(run.frames, run.cpu_s)}};
     fmt::print("{}: {} frames, {:.1f} frames/s\n", run.name, run.frames,
                Rate(run.frames, run.cpu_s));
   }
   if (args.time_ours) {
-    speed["trackers"]["ours"] = {{"frames", ours.frames}, {"cpu_s", ours.cpu_s},
+    speed["trackers"]["ours"] = {{"frames", ours.frames},
+                                 {"cpu_s", ours.cpu_s},
                                  {"frames_per_s", Rate(ours.frames, ours.cpu_s)}};
     fmt::print("ours: {} frames, {:.1f} frames/s\n", ours.frames, Rate(ours.frames, ours.cpu_s));
   }
@@ -285,7 +310,8 @@ void Run(const Args& args) {
     runs.emplace_back();
     runs.back().name = name;
     for (const MarkerPixel& m : init.markers) {
-      runs.back().markers.push_back(PeerMarker{.id = m.id, .tracker = nullptr, .box = {}});
+      runs.back().markers.push_back(
+          PeerMarker{.id = m.id, .tracker = nullptr, .box = {}, .size = {}});
       MarkerTrack track;
       track.marker = m.id;
       runs.back().trajectories.tracks.push_back(track);
@@ -304,7 +330,7 @@ void Run(const Args& args) {
     for (PeerRun& run : runs) {
       if (i == start) {
         const double t0 = ThreadSeconds();
-        StartPeer(run, bgr, init, sizes);
+        StartPeer(run, bgr, init, sizes, args.min_box_px);
         run.cpu_s += ThreadSeconds() - t0;
       }
       StepPeer(run, bgr, image, pull.frames[i], i == start);
@@ -325,13 +351,17 @@ int main(int argc, char** argv) {
   Args args;
   app.add_option("--capture", args.capture, "The capture (its pull/ and, when synth, gt/)")
       ->required();
-  app.add_option("--out", args.out, "Folder to write: <tracker>/boxes.csv, trajectories.csv, "
-                                    "speed.json")
+  app.add_option("--out", args.out,
+                 "Folder to write: <tracker>/boxes.csv, trajectories.csv, "
+                 "speed.json")
       ->required();
   app.add_option("--init", args.init, "init.json (default: <capture>/pull/init.json)");
   app.add_option("--trackers", args.trackers, "Peers to run: csrt, kcf")->delimiter(',');
   app.add_option("--init-box", args.init_box_px,
                  "Box side when the capture has no gt/markers_2d.json (px)");
+  app.add_option("--min-box", args.min_box_px,
+                 "Grow each tracker's box to at least this side (px) for context; the box "
+                 "reported is the marker's size about the tracker box's centre");
   app.add_flag("!--no-ours", args.time_ours, "Do not time our tracker's step beside them");
   CLI11_PARSE(app, argc, argv);
   try {

@@ -10,7 +10,8 @@
 #
 # usage: bench/tracking_peers_on_synth.sh <simtree> <tracking_peers> <work folder> [seeds] [species...]
 #   e.g. bench/tracking_peers_on_synth.sh build/bin/simtree build/bin/tracking_peers /tmp/peers "1 2 3"
-#   SYNTH_ARGS="--clean-color" and TRACK_ARGS="--motion damped_oscillator" pass options through.
+#   SYNTH_ARGS="--clean-color", TRACK_ARGS="--motion damped_oscillator" and
+#   PEERS_ARGS="--min-box 16" pass options through; PEERS_TAG=_box16 names the peers' folders.
 # Leaves <work>/<species>_<seed>.tracks/ (ours) and <work>/<species>_<seed>.peers/{csrt,kcf}/.
 set -euo pipefail
 simtree=$1
@@ -21,7 +22,8 @@ shift $(( $# >= 4 ? 4 : $# ))
 species=${*:-"acer_palmatum magnolia acer_rubrum"}
 mkdir -p "$work"
 
-rows="$work/peers_rows.jsonl"
+tag=${PEERS_TAG:-}
+rows="$work/peers_rows$tag.jsonl"
 : > "$rows"
 echo "| species | seed | tracker | tracked fraction | success rate | precision | recall | F-score | centre error px (median) | 3D error mm (median / p95) | swaps | frames/s (one core) |"
 echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
@@ -31,11 +33,12 @@ for sp in $species; do
     [ -f "$scene/gt/markers_2d.json" ] || "$simtree" -q synth --species "$sp" --seed "$seed" \
       --views 1 --no-contact-sheet ${SYNTH_ARGS:-} --out "$scene" > /dev/null
     "$simtree" -q track "$scene/pull" --out "$scene.tracks" ${TRACK_ARGS:-} > /dev/null
-    "$peers" --capture "$scene" --out "$scene.peers" > "$scene.peers.txt" 2>&1
+    "$peers" --capture "$scene" --out "$scene.peers$tag" ${PEERS_ARGS:-} \
+      > "$scene.peers$tag.txt" 2>&1
     for tracker in ours csrt kcf; do
-      dir=$([ "$tracker" = ours ] && echo "$scene.tracks" || echo "$scene.peers/$tracker")
+      dir=$([ "$tracker" = ours ] && echo "$scene.tracks" || echo "$scene.peers$tag/$tracker")
       "$simtree" -q eval tracking "$dir" --gt "$scene" --json "$dir.scores.json" > /dev/null
-      python3 - "$dir.scores.json" "$scene.peers/speed.json" "$sp" "$seed" "$tracker" "$rows" <<'PY'
+      python3 - "$dir.scores.json" "$scene.peers$tag/speed.json" "$sp" "$seed" "$tracker" "$rows" <<'PY'
 import json, sys
 path, speed, sp, seed, tracker, rows = sys.argv[1:]
 s = json.load(open(path))
