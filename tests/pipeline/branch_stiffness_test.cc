@@ -38,7 +38,8 @@ TEST(StiffenBranches, ScalesEveryBranchAboveTheTrunk) {
   for (int b = 1; b < 4; ++b) {
     EXPECT_DOUBLE_EQ(stiff.branches[b].material->modes[0].frequency_hz,
                      2.0 * tree.branches[b].material->modes[0].frequency_hz);
-    EXPECT_DOUBLE_EQ(stiff.branches[b].material->stiffness, 4.0 * tree.branches[b].material->stiffness);
+    EXPECT_DOUBLE_EQ(stiff.branches[b].material->stiffness,
+                     4.0 * tree.branches[b].material->stiffness);
     EXPECT_DOUBLE_EQ(stiff.branches[b].material->mass_kg, tree.branches[b].material->mass_kg);
   }
 }

@@ -98,7 +98,7 @@ class CameraTracks : public dynamics::FrameRecorder {
 // The same tree pulled up to 2.5 s, let go at `release_s`, the markers tracked through the free
 // motion, 30 frames a second.
 inline Scene ReleasedScene(const Eigen::Vector3d& force, double arc, double release_s,
-                    double branch_stiffening = 1.0) {
+                           double branch_stiffening = 1.0) {
   Scene s = PulledScene(force, arc);
   const Tree identified = s.tree;
   s.tree = pipeline::detail::StiffenBranches(s.tree, branch_stiffening);

@@ -17,11 +17,10 @@ void StiffnessCalibrationOptions::Validate() const {
   constexpr const char* kSource = "stiffness calibration options";
   CheckOption(!factors.empty(), kSource, "factors", "expected at least one factor");
   for (size_t i = 0; i < factors.size(); ++i) {
-    CheckOption(factors[i] >= 1.0 && std::isfinite(factors[i]) &&
-                    (i == 0 || factors[i] > factors[i - 1]),
-                kSource, "factors",
-                fmt::format("expected increasing finite factors >= 1, got {} at {}", factors[i],
-                            i));
+    CheckOption(
+        factors[i] >= 1.0 && std::isfinite(factors[i]) && (i == 0 || factors[i] > factors[i - 1]),
+        kSource, "factors",
+        fmt::format("expected increasing finite factors >= 1, got {} at {}", factors[i], i));
   }
   CheckOption(tolerance >= 0.0 && std::isfinite(tolerance), kSource, "tolerance",
               "expected a share >= 0");
@@ -52,8 +51,7 @@ StiffnessCalibration CalibrateBranchStiffness(const Tree& tree, const Trajectori
     try {
       const PullFit fit = FitPull(StiffenBranches(tree, factor), tracks, world_from_camera,
                                   release_s, excluded, fit_options);
-      const double residual =
-          fit.motion.fitted ? fit.motion.residual_rms_m : fit.residual_rms_m;
+      const double residual = fit.motion.fitted ? fit.motion.residual_rms_m : fit.residual_rms_m;
       out.trials.push_back({factor, residual});
       fits.emplace_back(fit);
       best = std::min(best, residual);

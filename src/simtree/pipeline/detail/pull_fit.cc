@@ -32,8 +32,8 @@ bool MeanPosition(const Trajectories& tracks, const MarkerTrack& track, double t
 }
 
 std::vector<PullObservation> Observe(const Tree& tree, const Trajectories& tracks,
-                                 const Eigen::Isometry3d& world_from_camera, double release_s,
-                                 const std::vector<int>& excluded, const PullFitOptions& o) {
+                                     const Eigen::Isometry3d& world_from_camera, double release_s,
+                                     const std::vector<int>& excluded, const PullFitOptions& o) {
   const double start = tracks.times_s.front();
   const double held_end = release_s - o.release_margin_s;
   std::vector<PullObservation> out;
@@ -107,11 +107,9 @@ double HoldStart(const Trajectories& tracks, const std::vector<PullObservation>&
   return 0.8 * release_s;
 }
 
-
 // Every candidate rope point whose least-squares force explains the held displacements within
 // the limits, best (smallest residual) first.
-std::vector<PullCandidate> RankCandidates(const Tree& tree,
-                                          const std::vector<PullObservation>& obs,
+std::vector<PullCandidate> RankCandidates(const Tree& tree, const std::vector<PullObservation>& obs,
                                           const Eigen::VectorXd& held, const PullFitOptions& o) {
   dynamics::TreeDynamics sim(tree);
   double largest = 0.0;
@@ -161,8 +159,8 @@ void PullFitOptions::Validate() const {
         "expected seconds > 0");
   check(motion.max_release_shift_s >= 0 && std::isfinite(motion.max_release_shift_s),
         "motion.max_release_shift_s", "expected seconds >= 0");
-  check(motion.outlier_factor > 1 && std::isfinite(motion.outlier_factor),
-        "motion.outlier_factor", "expected a factor > 1");
+  check(motion.outlier_factor > 1 && std::isfinite(motion.outlier_factor), "motion.outlier_factor",
+        "expected a factor > 1");
   check(motion.outlier_share > 0 && std::isfinite(motion.outlier_share), "motion.outlier_share",
         "expected a share > 0");
 }
@@ -211,7 +209,8 @@ PullFit FitPull(const Tree& tree, const Trajectories& tracks,
   fit.branch = ranked.front().branch;
   fit.arc_length = ranked.front().arc_length;
   fit.force = ranked.front().force;
-  fit.residual_rms_m = ranked.front().static_residual_m / std::sqrt(static_cast<double>(obs.size()));
+  fit.residual_rms_m =
+      ranked.front().static_residual_m / std::sqrt(static_cast<double>(obs.size()));
   fit.observed_rms_m = observed;
   fit.markers = static_cast<int>(obs.size());
   fit.candidates = static_cast<int>(Candidates(tree, options).size());
@@ -219,8 +218,7 @@ PullFit FitPull(const Tree& tree, const Trajectories& tracks,
   fit.hold_s = HoldStart(tracks, obs, world_from_camera, release_s, options.hold_fraction);
 
   const std::vector<PullCandidate> best(
-      ranked.begin(),
-      ranked.begin() + std::min<size_t>(ranked.size(), options.motion_candidates));
+      ranked.begin(), ranked.begin() + std::min<size_t>(ranked.size(), options.motion_candidates));
   fit.motion = FitPullOnMotion(tree, tracks, world_from_camera, obs, best, fit.hold_s, release_s,
                                options.max_force_n, options.motion);
   if (fit.motion.fitted) {

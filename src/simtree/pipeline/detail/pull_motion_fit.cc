@@ -131,14 +131,15 @@ SearchResult Search(const std::vector<UnitResponse>& responses, const std::vecto
   SearchResult best;
   for (size_t c = 0; c < responses.size(); ++c) {
     const double step = responses[c].step_s;
-    const auto first = static_cast<int64_t>(
-        std::ceil((detected_release_s - o.max_release_shift_s) / step - 1e-6));
+    const auto first =
+        static_cast<int64_t>(std::ceil((detected_release_s - o.max_release_shift_s) / step - 1e-6));
     const auto last = static_cast<int64_t>(
         std::floor((detected_release_s + o.max_release_shift_s) / step + 1e-6));
     for (int64_t k = std::max<int64_t>(first, 1); k <= last; ++k) {
       const ReleaseFit fit =
           FitAtRelease(responses[c], samples, used, static_cast<double>(k) * step);
-      if (!(fit.force_n > 0.0) || fit.force_n > max_force_n || fit.squared_residual >= best.fit.squared_residual) {
+      if (!(fit.force_n > 0.0) || fit.force_n > max_force_n ||
+          fit.squared_residual >= best.fit.squared_residual) {
         continue;
       }
       best.candidate = static_cast<int>(c);
@@ -177,8 +178,7 @@ MotionFit FitPullOnMotion(const Tree& tree, const Trajectories& tracks,
                           const Eigen::Isometry3d& world_from_camera,
                           const std::vector<PullObservation>& observations,
                           const std::vector<PullCandidate>& candidates, double hold_s,
-                          double release_s, double max_force_n,
-                          const MotionFitOptions& options) {
+                          double release_s, double max_force_n, const MotionFitOptions& options) {
   MotionFit out;
   const int frames = tracks.frame_count();
   if (candidates.empty() || observations.empty() || frames < 2) return out;
@@ -201,8 +201,8 @@ MotionFit FitPullOnMotion(const Tree& tree, const Trajectories& tracks,
   std::vector<bool> used(observations.size(), true);
   SearchResult best = Search(responses, samples, used, release_s, max_force_n, options);
   if (best.candidate < 0) return out;
-  used = WithoutOutliers(responses[best.candidate], samples, best.fit, observations.size(),
-                         options);
+  used =
+      WithoutOutliers(responses[best.candidate], samples, best.fit, observations.size(), options);
   if (std::count(used.begin(), used.end(), true) < static_cast<long>(observations.size())) {
     const SearchResult again = Search(responses, samples, used, release_s, max_force_n, options);
     if (again.candidate >= 0) best = again;

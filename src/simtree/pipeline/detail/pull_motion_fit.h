@@ -33,7 +33,7 @@ struct PullCandidate {
 };
 
 struct MotionFitOptions {
-  double window_s = 3.0;             // s of motion after the release fitted (> 0)
+  double window_s = 3.0;              // s of motion after the release fitted (> 0)
   double max_release_shift_s = 0.15;  // s the release may move from the detected one (>= 0)
   // A marker whose residual, as a share of its own motion, exceeds this many times the median
   // marker's share and `outlier_share` is left out and the fit redone once (a track that
@@ -44,13 +44,13 @@ struct MotionFitOptions {
 
 struct MotionFit {
   bool fitted = false;
-  PullCandidate candidate;           // the winner, its force refitted on the motion
-  double release_s = 0.0;            // fitted release: a step boundary of the replay
-  double time_step_s = 0.0;          // the step the fit simulated with: the replay's
-  double residual_rms_m = 0.0;       // per sample, of the fitted displacements
-  double observed_rms_m = 0.0;       // per sample, of the tracked displacements themselves
-  int markers = 0;                   // markers the final fit used
-  int samples = 0;                   // marker-frames the final fit used
+  PullCandidate candidate;      // the winner, its force refitted on the motion
+  double release_s = 0.0;       // fitted release: a step boundary of the replay
+  double time_step_s = 0.0;     // the step the fit simulated with: the replay's
+  double residual_rms_m = 0.0;  // per sample, of the fitted displacements
+  double observed_rms_m = 0.0;  // per sample, of the tracked displacements themselves
+  int markers = 0;              // markers the final fit used
+  int samples = 0;              // marker-frames the final fit used
 };
 
 // `candidates`: best first; the tracked samples from `hold_s` (the hold's start) to `release_s`
@@ -60,7 +60,6 @@ MotionFit FitPullOnMotion(const Tree& tree, const Trajectories& tracks,
                           const Eigen::Isometry3d& world_from_camera,
                           const std::vector<PullObservation>& observations,
                           const std::vector<PullCandidate>& candidates, double hold_s,
-                          double release_s, double max_force_n,
-                          const MotionFitOptions& options);
+                          double release_s, double max_force_n, const MotionFitOptions& options);
 
 }  // namespace simtree::pipeline::detail

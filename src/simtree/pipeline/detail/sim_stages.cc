@@ -5,8 +5,8 @@
 #include <memory>
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include "simtree/core/atomic_file.h"
 #include "simtree/core/error.h"
@@ -140,9 +140,9 @@ std::string RunBuildStage(const StageContext& context) {
   return fmt::format(
       "{} branches: {} measured, {} interpolated; {} markers; {:.1f} kg; branches above the "
       "trunk x{:.2f} in frequency to replay the pull ({:.1f} mm RMS; x{:.2f}: {:.1f} mm)",
-      tree.size(), report.measured, report.interpolated, tree.markers.size(),
-      report.total_mass_kg, calibration.factor, 1e3 * ChosenResidual(calibration),
-      calibration.trials.front().factor, 1e3 * calibration.trials.front().residual_rms_m);
+      tree.size(), report.measured, report.interpolated, tree.markers.size(), report.total_mass_kg,
+      calibration.factor, 1e3 * ChosenResidual(calibration), calibration.trials.front().factor,
+      1e3 * calibration.trials.front().residual_rms_m);
 }
 
 std::string RunSimulateStage(const StageContext& context) {
