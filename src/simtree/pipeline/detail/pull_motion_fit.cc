@@ -205,7 +205,11 @@ MotionFit FitPullOnMotion(const Tree& tree, const Trajectories& tracks,
       WithoutOutliers(responses[best.candidate], samples, best.fit, observations.size(), options);
   if (std::count(used.begin(), used.end(), true) < static_cast<long>(observations.size())) {
     const SearchResult again = Search(responses, samples, used, release_s, max_force_n, options);
-    if (again.candidate >= 0) best = again;
+    if (again.candidate >= 0) {
+      best = again;
+    } else {
+      used.assign(observations.size(), true);  // the first fit, on every marker, stands
+    }
   }
 
   out.fitted = true;

@@ -1,10 +1,10 @@
 #pragma once
-// The pull's second step: the rope points the static fit ranks best are each simulated, and the one
-// whose simulated markers follow the tracked motion best wins, with its force and its release time
-// fitted to that motion. The static fit sees only the held pose; the motion after the release
-// also carries where the rope was, how hard it pulled and, to a fraction of a frame, when it let
-// go (a release detected from speeds lags the true one by a frame or two, and at 1.3 Hz one frame
-// is 16 degrees of phase).
+// The pull's second step: the rope points the static fit ranks best are each simulated, and the
+// one whose simulated markers follow the tracked motion best wins, with its force's size and its
+// release time fitted to that motion (the direction stays the static fit's). The static fit sees
+// only the held pose; the motion after the release also carries where the rope was, how hard it
+// pulled and, to a fraction of a frame, when it let go (a release detected from speeds lags the
+// true one by a frame or two, and at 1.3 Hz one frame is 16 degrees of phase).
 
 #include <vector>
 
