@@ -15,8 +15,39 @@
 namespace simtree::registration {
 namespace {
 
+// A pair whose first result failed for too little overlap but agrees with the chain of the pairs
+// trusted at their first attempt between its two views is right, only seen from views too far
+// apart to overlap more: its retries would find the same result again (on the synthetic
+// captures they always did). It is declined without them; the chain's poses are not yet
+// optimised, hence the wider tolerance (MultiViewOptions::chained_decline_factor).
+void DeclineChainedPairs(const std::vector<RegistrationView>& views,
+                         const MultiViewOptions& options, std::vector<PairEdge>& pairs) {
+  if (!(options.chained_decline_factor > 0)) return;
+  std::vector<char> trusted(pairs.size());
+  for (size_t e = 0; e < pairs.size(); ++e) trusted[e] = pairs[e].result.ok();
+  const int n = static_cast<int>(views.size());
+  for (PairEdge& edge : pairs) {
+    const PairResult& r = edge.result;
+    if (r.ok() || r.attempts.empty() || !r.attempts.front().refined ||
+        r.fine.fitness >= options.pair.min_fitness) {
+      continue;
+    }
+    const ChainedPoses chain = ChainPoses(pairs, trusted, n, edge.target);
+    if (!chain.anchor_from_view[edge.source]) continue;
+    const PoseDifference d = DifferenceAt(
+        chain.anchor_from_view[edge.source]->inverse() * r.target_from_source, views[edge.source]);
+    if (d.rotation_deg <= options.chained_decline_factor * options.max_pair_rotation_deg &&
+        d.shift_m <= options.chained_decline_factor * options.max_pair_shift_m) {
+      DeclinePair(fmt::format("declined without retries: its result agrees with the trusted "
+                              "pairs' chain ({:.1f} deg, {:.0f} mm)",
+                              d.rotation_deg, 1e3 * d.shift_m),
+                  edge.result);
+    }
+  }
+}
+
 // Every pair around the ring (ViewPairs), each registered on its own, all at once (each pair's
-// ICP is parallel too).
+// ICP is parallel too): first attempts, then the retries of the pairs not declined.
 std::vector<PairEdge> RegisterViewPairs(const std::vector<RegistrationView>& views,
                                         const MultiViewOptions& options) {
   std::vector<PairEdge> pairs;
@@ -28,7 +59,12 @@ std::vector<PairEdge> RegisterViewPairs(const std::vector<RegistrationView>& vie
   }
   oneapi::tbb::parallel_for(size_t{0}, pairs.size(), [&](size_t e) {
     PairEdge& edge = pairs[e];
-    edge.result = RegisterPair(views[edge.source], views[edge.target], options.pair);
+    edge.result = RegisterPairFirstAttempt(views[edge.source], views[edge.target], options.pair);
+  });
+  DeclineChainedPairs(views, options, pairs);
+  oneapi::tbb::parallel_for(size_t{0}, pairs.size(), [&](size_t e) {
+    PairEdge& edge = pairs[e];
+    RetryPair(views[edge.source], views[edge.target], options.pair, edge.result);
   });
   return pairs;
 }
@@ -126,6 +162,7 @@ void MultiViewOptions::Validate() const {
   CheckPositive("max_pair_rotation_deg", max_pair_rotation_deg);
   CheckPositive("max_pair_shift_m", max_pair_shift_m);
   CheckPositive("merge_voxel_factor", merge_voxel_factor);
+  CheckNonNegative("chained_decline_factor", chained_decline_factor);
 }
 
 const char* ToString(ViewOutcome outcome) {

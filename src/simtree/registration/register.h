@@ -43,6 +43,11 @@ struct MultiViewOptions {
   double max_pair_rotation_deg = 1.5;  // deg, > 0
   double max_pair_shift_m = 0.025;     // m, > 0
   double merge_voxel_factor = 1.0;     // point spacings, > 0: the merged cloud's voxel grid
+  // >= 0 (0: never): a pair whose first attempt overlaps too little but lands within this many
+  // times max_pair_rotation_deg and max_pair_shift_m of the chain of pairs trusted at their first
+  // attempt is declined without its retries (they find the same result again: views too far
+  // apart around the tree to overlap more).
+  double chained_decline_factor = 2.0;
 
   // Throws InputError naming the field of a nonsense value (pair.sac_ia.iterations, ...).
   void Validate() const;

@@ -73,6 +73,15 @@ nlohmann::ordered_json PairsToJson(const MultiViewResult& result) {
     p["up_disagreement_deg"] = Number(r.up_disagreement_deg);
     p["ground_offset_mm"] = Number(1e3 * r.ground_offset_m);
     p["trunk_offset_mm"] = Number(1e3 * r.trunk_offset_m);
+    p["attempt"] = ToString(r.attempt);
+    nlohmann::ordered_json attempts = nlohmann::ordered_json::array();
+    for (const PairResult::AttemptRun& run : r.attempts) {
+      attempts.push_back({{"attempt", ToString(run.attempt)},
+                          {"view_overlap", Round(run.view_overlap, 1e-4)},
+                          {"time_ms", Round(1e3 * run.seconds, 0.1)}});
+    }
+    p["attempts"] = attempts;
+    p["declined"] = r.declined;
     p["trunk_constraint"] = r.trunk_constraint;
     p["ground_constraint"] = r.ground_constraint;
     p["pose_graph_rotation_residual_deg"] = Number(edge.used ? edge.rotation_residual_deg : NAN);

@@ -584,16 +584,56 @@ PairResult RegisterPairOnce(const RegistrationView& source, const RegistrationVi
   return result;
 }
 
+// The attempt reached the fine stage (its fitness is a view overlap).
+bool Refined(const PairResult& attempt, const PairOptions& options) {
+  return options.run_icp &&
+         (attempt.outcome == PairOutcome::kOk || attempt.outcome == PairOutcome::kFailedChecks);
+}
+
+PairResult::AttemptRun RunOf(const PairResult& found, PairAttempt attempt,
+                             const PairOptions& options) {
+  return {attempt,
+          found.fine.fitness,
+          found.seconds,
+          Refined(found, options),
+          found.coarse_overlap,
+          found.failed_checks,
+          found.target_from_source};
+}
+
 // Keeps whichever of `result` and `retried` (found by `attempt`) overlaps more, charged with the
-// time of both.
-void KeepBetterOverlap(PairResult retried, PairAttempt attempt, PairResult* result) {
+// time of both; the attempt is added to the pair's list.
+void KeepBetterOverlap(PairResult retried, PairAttempt attempt, const PairOptions& options,
+                       PairResult* result) {
+  result->attempts.push_back(RunOf(retried, attempt, options));
   retried.seconds += result->seconds;
   retried.attempt = attempt;
   if (retried.fine.fitness > result->fine.fitness) {
+    retried.attempts = std::move(result->attempts);
     *result = std::move(retried);
   } else {
     result->seconds = retried.seconds;
   }
+}
+
+// Why a pair whose result overlaps too little gets no (further) retry; "" when it may have one.
+// The overlap declines a pair only when an attempt reached the fine stage: one that found no key
+// region or no coarse result says nothing of what the other key regions or priors may find.
+std::string WhyNoRetry(const PairResult& result, const PairOptions& options, double seconds) {
+  bool refined = false;
+  for (const PairResult::AttemptRun& run : result.attempts) refined = refined || run.refined;
+  if (refined && result.fine.fitness < options.decline_below_overlap) {
+    return fmt::format(
+        "declined without {}: {:.0f}% of points overlap at best (retries rescue "
+        "none below {:.0f}%)",
+        result.attempts.size() == 1 ? "retries" : "more retries", 100 * result.fine.fitness,
+        100 * options.decline_below_overlap);
+  }
+  if (options.max_pair_seconds > 0 && seconds >= options.max_pair_seconds) {
+    return fmt::format("declined without more retries: {:.1f} s spent (at most {:.1f})", seconds,
+                       options.max_pair_seconds);
+  }
+  return "";
 }
 
 }  // namespace
@@ -668,6 +708,8 @@ void PairOptions::Validate() const {
   CheckNonNegative("screen_shift_step_factor", screen_shift_step_factor);
   CheckNonNegative("shifted_refinements", shifted_refinements);
   CheckNonNegative("retry_shift_share", retry_shift_share);
+  CheckShare("decline_below_overlap", decline_below_overlap);
+  CheckNonNegative("max_pair_seconds", max_pair_seconds);
   CheckPositiveList("medial_distance_factors", medial_distance_factors, true);
   CheckNonNegative("max_reverse_disagreement_factor", max_reverse_disagreement_factor);
   CheckNonNegative("trunk_axis_weight", trunk_axis_weight);
@@ -689,44 +731,72 @@ void PairOptions::Validate() const {
   CheckNonNegative("max_ground_guard_offset_m", max_ground_guard_offset_m);
 }
 
-PairResult RegisterPair(const RegistrationView& source, const RegistrationView& target,
-                        const PairOptions& options) {
+PairResult RegisterPairFirstAttempt(const RegistrationView& source, const RegistrationView& target,
+                                    const PairOptions& options) {
   options.Validate();
   PairResult result = RegisterPairOnce(source, target, options);
+  result.attempts.push_back(RunOf(result, PairAttempt::kFirst, options));
+  return result;
+}
+
+void DeclinePair(const std::string& reason, PairResult& result) {
+  result.declined = reason;
+  result.status += "; " + reason;
+}
+
+void RetryPair(const RegistrationView& source, const RegistrationView& target,
+               const PairOptions& options, PairResult& result) {
+  options.Validate();
+  if (!result.declined.empty()) return;
+  // A retry runs when asked for and the result overlaps too little, unless the pair is declined
+  // (decline_below_overlap, max_pair_seconds).
+  auto retry = [&](bool asked) {
+    if (!asked || result.fine.fitness >= options.min_fitness || !result.declined.empty()) {
+      return false;
+    }
+    result.declined = WhyNoRetry(result, options, result.seconds);
+    return result.declined.empty();
+  };
   // Key regions placed at different physical points (one view's ground or trunk base seen far
   // higher than the other's) make SAC-IA align different parts of the tree; the other choice
   // of key regions is tried before the priors are given up.
-  if (options.retry_other_key_regions && UsesKeyRegion(source.coarse_input) &&
-      result.fine.fitness < options.min_fitness) {
+  if (retry(options.retry_other_key_regions && UsesKeyRegion(source.coarse_input))) {
     PairOptions other = options;
     other.own_key_regions = !options.own_key_regions;
     KeepBetterOverlap(RegisterPairOnce(source, target, other), PairAttempt::kOtherKeyRegions,
-                      &result);
+                      options, &result);
   }
   // Both forks may be other branchings (a view that sees one arm of the first fork hidden behind
   // the other finds the next one up): SAC-IA then aligns the two forks, the source lands a
   // fork's spacing too high or low, and no turn mends it. The screen is run once more over
   // shifts along the trunk too, with the key regions that overlapped best.
-  if (options.retry_with_shifts && options.screen_shift_share <= 0 && options.run_icp &&
-      result.fine.fitness < options.min_fitness) {
+  if (retry(options.retry_with_shifts && options.screen_shift_share <= 0 && options.run_icp)) {
     PairOptions shifted = options;
     shifted.screen_shift_share = options.retry_shift_share;
     shifted.own_key_regions = result.own_key_regions;
-    KeepBetterOverlap(RegisterPairOnce(source, target, shifted), PairAttempt::kShifts, &result);
+    KeepBetterOverlap(RegisterPairOnce(source, target, shifted), PairAttempt::kShifts, options,
+                      &result);
   }
   // A trunk found wrong in one view (a stem beside it, a fork taken for the trunk) misleads the
   // up and centre priors and the snap in every turn; when the result overlaps too little to be
   // trusted, the pair is registered once more without them and the better overlap kept.
   const bool priors = options.up_prior || options.center_prior || options.snap_to_priors;
-  if (options.retry_without_priors && priors && result.fine.fitness < options.min_fitness) {
+  if (retry(options.retry_without_priors && priors)) {
     PairOptions plain = options;
     plain.up_prior = plain.center_prior = plain.snap_to_priors = false;
     plain.own_key_regions = result.own_key_regions;
     plain.min_fitness = std::max(options.min_fitness, options.min_fitness_without_priors);
-    KeepBetterOverlap(RegisterPairOnce(source, target, plain), PairAttempt::kWithoutPriors,
+    KeepBetterOverlap(RegisterPairOnce(source, target, plain), PairAttempt::kWithoutPriors, options,
                       &result);
     result.retried_without_priors = true;
   }
+  if (!result.declined.empty()) result.status += "; " + result.declined;
+}
+
+PairResult RegisterPair(const RegistrationView& source, const RegistrationView& target,
+                        const PairOptions& options) {
+  PairResult result = RegisterPairFirstAttempt(source, target, options);
+  RetryPair(source, target, options, result);
   return result;
 }
 

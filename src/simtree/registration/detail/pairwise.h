@@ -75,6 +75,15 @@ struct PairOptions {
   // behind the other finds the next fork up): SAC-IA aligns them and no turn mends the height.
   bool retry_with_shifts = true;
   double retry_shift_share = 0.6;  // >= 0, of the key region's radius
+  // [0, 1]: a result overlapping less than this is declined without (more) retries (0: always
+  // retry). Retries rescue results that overlap too little, but on the synthetic captures none
+  // whose first attempt overlapped less than 0.25 (docs/registration.md, "Fail fast"); views
+  // that share no part of the tree stay near 0.1-0.2 whatever is tried.
+  double decline_below_overlap = 0.2;
+  // s, >= 0: no retry starts once the pair's attempts have taken this long (0: no limit). A last
+  // guard for hopeless pairs nothing else declines; it makes the outcome depend on the machine's
+  // load, so it is set far above the 10 s the slowest rescued pair took on 2 loaded cores.
+  double max_pair_seconds = 30.0;
   // After ICP, the source is moved so the views' medial points (branch axes) meet
   // (AlignMedialAxes) at these distances, in point spacings, each > 0; they replace
   // medial.max_distances_m. Empty: no medial fit.
@@ -198,6 +207,21 @@ struct PairResult {
   bool trunk_constraint = false;   // the trunk axes took part in fine registration
   bool ground_constraint = false;  // the ground planes took part in fine registration
   double seconds = 0.0;            // coarse + fine (view preparation not included)
+  // Each attempt run, in order: what it found and what it took.
+  struct AttemptRun {
+    PairAttempt attempt = PairAttempt::kFirst;
+    double view_overlap = 0.0;  // its fine result's fitness (before the checks)
+    double seconds = 0.0;
+    bool refined = false;                  // it reached the fine stage
+    double coarse_overlap = 0.0;           // its skeleton overlap
+    std::vector<PairCheck> failed_checks;  // the checks its result failed
+    Eigen::Isometry3d target_from_source = Eigen::Isometry3d::Identity();  // its result
+  };
+  std::vector<AttemptRun> attempts;
+  // Why the retries were not run although the result overlaps too little ("": they ran, or were
+  // not needed): decline_below_overlap, max_pair_seconds, or (RegisterViews) the chain of
+  // trusted pairs agreeing with the first result.
+  std::string declined;
 
   bool ok() const { return outcome == PairOutcome::kOk; }
 };
@@ -246,6 +270,17 @@ TurnedFineResult RefineWithTurns(const RegistrationView& source, const Registrat
 // order, keeping the best overlap (PairResult::attempt says which).
 PairResult RegisterPair(const RegistrationView& source, const RegistrationView& target,
                         const PairOptions& options = {});
+
+// RegisterPair in two steps, so that a caller who knows more (RegisterViews: the chain of other
+// pairs) may decline a pair between them: the first attempt (PairResult::attempts[0]), then the
+// retries of a result not declined.
+PairResult RegisterPairFirstAttempt(const RegistrationView& source, const RegistrationView& target,
+                                    const PairOptions& options = {});
+void RetryPair(const RegistrationView& source, const RegistrationView& target,
+               const PairOptions& options, PairResult& result);
+// Marks `result` declined for `reason` (PairResult::declined, appended to the status): RetryPair
+// then leaves it as it is.
+void DeclinePair(const std::string& reason, PairResult& result);
 
 // The key regions of a pair: spheres around the same physical point in both views, the point of
 // each trunk's axis at the lower of the two views' branching heights (a view that cannot see a
