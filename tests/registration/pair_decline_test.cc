@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "preprocessing/option_fixtures.h"
 #include "registration_fixtures.h"
 #include "simtree/registration/detail/pairwise.h"
 #include "simtree/registration/register.h"
@@ -75,6 +76,17 @@ TEST(PairDecline, APairTheTrustedChainExplainsIsNotRetried) {
   }
   EXPECT_GE(declined, 1);
   EXPECT_EQ(result.RegisteredCount(), 4);
+}
+
+TEST(PairDecline, NonsenseOptionsAreRefusedNamingTheField) {
+  EXPECT_EQ(
+      test::RefusedFieldAfter<PairOptions>([](PairOptions& o) { o.decline_below_overlap = 1.5; }),
+      "decline_below_overlap");
+  EXPECT_EQ(test::RefusedFieldAfter<PairOptions>([](PairOptions& o) { o.max_pair_seconds = -1; }),
+            "max_pair_seconds");
+  EXPECT_EQ(test::RefusedFieldAfter<MultiViewOptions>(
+                [](MultiViewOptions& o) { o.chained_decline_factor = -1; }),
+            "chained_decline_factor");
 }
 
 }  // namespace
