@@ -6,13 +6,21 @@
 # simulation-ready tree on the true static tree, and `simtree eval identification` scores links and
 # branches. The same identification on the true tracks (no tracker error) is scored beside it: it
 # separates what the tracker's noise costs from what a 10 s record of a tree's modes allows. Both
-# are identified a second time with `--per-link` (the damped sinusoid fit on each link alone
-# instead of on poles shared by all links), scored in the pooled table.
+# default (each link's choice between the poles shared by all links and its own fit) writes both
+# readings in materials.json (`poles`), scored in the last table; with COMPARE=1 the captures are
+# also identified with `--joint-poles` and `--per-link` and scored in the pooled table. Captures
+# and scores already in <work> are reused (synth is the expensive part).
 # Prints one markdown row per capture and estimator, then the medians over every link of every
-# capture (pooled), and per-link detail in <work>/links.md.
+# capture (pooled), per-link detail in <work>/links.md, and the issue-23 table: FEM records and,
+# with BENCH=<bench_identification binary>, 20 seeds of independent-mode records, the paper's
+# half-power beside the fit's three readings, with the share of truths within one standard
+# deviation of the estimate.
 #
-# usage: bench/identification_on_synth.sh <simtree binary> <work folder> [seeds] [species...]
-#   e.g. bench/identification_on_synth.sh build/bin/simtree /tmp/ident "1 2 3"
+# CLEAN=0 skips the error-free runs (half the time).
+# usage: [BENCH=build/bin/bench_identification] [CLEAN=0] [COMPARE=1] bench/identification_on_synth.sh <simtree binary>
+#          <work folder> [seeds] [species...]
+#   e.g. BENCH=build/bin/bench_identification bench/identification_on_synth.sh build/bin/simtree \
+#          /tmp/ident "1 2 3"
 set -euo pipefail
 simtree=$1
 work=$2
@@ -31,17 +39,23 @@ for sp in $species; do
     run="$work/${sp}_$seed"
     [ -f "$scene/gt/modal.json" ] || "$simtree" -q synth --species "$sp" --seed "$seed" \
       --no-contact-sheet --out "$scene" > /dev/null
-    for run_kind in "2.5 joint-poles" "0 joint-poles" "2.5 per-link" "0 per-link"; do
+    kinds=("2.5 choice" "0 choice")
+    [ "${COMPARE:-0}" = 1 ] && kinds+=("2.5 joint-poles" "0 joint-poles" "2.5 per-link" "0 per-link")
+    for run_kind in "${kinds[@]}"; do
       read -r noise fit <<< "$run_kind"
-      tag=$([ "$noise" = 0 ] && echo ".clean" || echo "")$([ "$fit" = joint-poles ] || echo ".perlink")
+      [ "$noise" = 0 ] && [ "${CLEAN:-1}" = 0 ] && continue
+      tag=$([ "$noise" = 0 ] && echo ".clean" || echo "")
+      case $fit in joint-poles) tag=$tag.joint ;; per-link) tag=$tag.perlink ;; esac
+      # Reused between runs of the bench: delete <work> (or its *.scores.json) to measure anew.
+      [ -f "$run$tag.scores.json" ] && continue
       "$simtree" -q identify "$scene/gt/trajectories.csv" --links "$scene/pull/markers.json" \
         --tree "$scene/gt/tree.json" --camera-pose "$scene/gt/pull_camera.json" \
-        --out "$run$tag.materials.json" --no-plots --window 10 --$fit \
+        --out "$run$tag.materials.json" --no-plots --window 10 \
+        $([ "$fit" = choice ] || echo "--$fit") \
         $([ "$noise" = 0 ] || echo "--simulate-tracker-noise $noise --visibility $scene/gt/markers_2d.json --seed $seed") \
         > "$run$tag.identify.txt" 2>&1
       "$simtree" -q build "$scene/gt/tree.json" -m "$run$tag.materials.json" \
         -o "$run$tag.simready.json" > /dev/null 2>&1
-      rm -f "$run$tag.scores.json"
       "$simtree" -q eval identification "$run$tag.materials.json" --gt "$scene" \
         --tree "$run$tag.simready.json" --json "$run$tag.scores.json" > /dev/null
     done
@@ -50,7 +64,9 @@ for sp in $species; do
     python3 - "$run.scores.json" "$run.clean.scores.json" "$run.materials.json" "$sp" "$seed" <<'EOF'
 import json, sys
 from collections import Counter
-scores, clean = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))
+import os
+scores = json.load(open(sys.argv[1]))
+clean = json.load(open(sys.argv[2])) if os.path.exists(sys.argv[2]) else {"links": {}}
 materials = json.load(open(sys.argv[3]))
 sp, seed = sys.argv[4], sys.argv[5]
 def pct(v): return "-" if v is None else f"{100 * v:.2f}%"
@@ -87,16 +103,18 @@ done
 # Medians over every link of every capture, per estimator; "clear" links are those whose truth's
 # runner-up mode peaks below 70% of the dominant one (where the dominant mode is well defined).
 python3 - "$work/links.md" "${scores[@]}" <<'EOF'
-import json, sys, statistics
+import json, os, sys, statistics
 out, files = sys.argv[1], sys.argv[2:]
 def med(v): return f"{100 * statistics.median(v):.2f}%" if v else "-"
 rows, pooled = [], {}
 for path in files:
-    for tag in ("", ".clean", ".perlink", ".clean.perlink"):
+    for tag in ("", ".clean", ".joint", ".clean.joint", ".perlink", ".clean.perlink"):
+        if not os.path.exists(path.replace(".scores.json", tag + ".scores.json")):
+            continue  # CLEAN=0: no error-free runs
         s = json.load(open(path.replace(".scores.json", tag + ".scores.json")))
         for name, est in s["links"].items():
-            if tag.endswith(".perlink") and name != "damped_sinusoid_fit":
-                continue  # --per-link changes the fit's values only
+            if tag.endswith((".perlink", ".joint")) and name != "damped_sinusoid_fit":
+                continue  # --per-link and --joint-poles change the fit's values only
             p = pooled.setdefault((name, tag), {"all": [], "clear": [], "n": 0, "none": 0, "clear_n": 0})
             for l in est["per_link"]:
                 p["n"] += 1
@@ -115,7 +133,8 @@ print("| estimator | tracker error | links | not estimated | median df/f | media
 print("| --- | --- | --- | --- | --- | --- | --- | --- |")
 for (name, tag), p in sorted(pooled.items(), key=lambda kv: (kv[0][1], kv[0][0])):
     a, c = p["all"], p["clear"]
-    label = name + (" (per link)" if tag.endswith(".perlink") else "")
+    label = name + {".perlink": " (per link)", ".joint": " (joint poles)"}.get(
+        tag.replace(".clean", ""), " (choice)" if name == "damped_sinusoid_fit" else "")
     print(f"| {label} | {'none' if tag.startswith('.clean') else '2.5 mm'} | {p['n']} | {p['none']} | "
           f"{med([x[0] for x in a])} | {med([x[1] for x in a if x[1] is not None])} | "
           f"{med([x[2] for x in a])} | {len(c)} of {p['clear_n']}: {med([x[0] for x in c])}, "
@@ -166,3 +185,50 @@ for sp, p in presets.items():
           f"{r(p['tz'], '{:.3f}')} ({p['in']} of {len(p['tf'])}) | {r(p['f1'], '{:.2f}')} Hz | "
           f"{t[0]:.2f}-{t[1]:.2f} Hz, {t[2]:.3f}-{t[3]:.3f} |" if t else "")
 PY
+
+# Issue 23's table: one row per kind of record and reading, the truth's share within 1 sd.
+echo
+echo "| records | estimator | tracker error | links | not estimated | median df/f | median dzeta/zeta | truth within 1 sd (f / zeta) | note |"
+echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"
+python3 - "${scores[@]}" <<'EOF'
+import json, sys, statistics
+# The fit's three readings from the default run's materials.json: "poles" holds the shared and the
+# own reading of every link (a link without a shared reading keeps its own, as --joint-poles does).
+def reading(ml, name, how):
+    if name != "damped_sinusoid_fit": return ml.get("estimators", {}).get(name, {})
+    p = ml.get("poles") or {}
+    if how == "own": return p.get("own", ml)
+    if how == "shared": return p["shared"] if p.get("shared", {}).get("status") == "ok" else p.get("own", ml)
+    return ml
+rows = [("half_power_fft", "", "half_power_fft"),
+        ("damped_sinusoid_fit", "own", "damped_sinusoid_fit (per link)"),
+        ("damped_sinusoid_fit", "shared", "damped_sinusoid_fit (joint poles)"),
+        ("damped_sinusoid_fit", "", "damped_sinusoid_fit (choice)")]
+for name, how, label in rows:
+    df, dz, n, none, fc, zc, sd, shared = [], [], 0, 0, 0, 0, 0, 0
+    for path in sys.argv[1:]:
+        s = json.load(open(path))
+        m = json.load(open(path.replace(".scores.json", ".materials.json")))
+        by_label = {l["label"]: l for l in m["links"]}
+        for l in s["links"]["damped_sinusoid_fit"]["per_link"]:
+            n += 1
+            ml = by_label.get(l["label"], {})
+            shared += (ml.get("poles") or {}).get("used") == "shared"
+            e = reading(ml, name, how)
+            f, z = e.get("frequency_hz"), e.get("damping_ratio")
+            if e.get("status") != "ok" or f is None or z is None:
+                none += 1
+                continue
+            tf, tz = l["truth_frequency_hz"], l["truth_damping_ratio"]
+            df.append(abs(f / tf - 1)); dz.append(abs(z / tz - 1))
+            fs, zs = e.get("frequency_std_hz"), e.get("damping_std")
+            if fs is not None and zs is not None:
+                sd += 1
+                fc += abs(f - tf) <= fs
+                zc += abs(z - tz) <= zs
+    cover = f"{100 * fc / sd:.0f}% / {100 * zc / sd:.0f}%" if sd else "-"
+    note = f" {shared} of {n} links shared" if label.endswith("(choice)") else ""
+    print(f"| FEM synth, {len(sys.argv) - 1} captures | {label} | 2.5 mm | {n} | {none} | "
+          f"{100 * statistics.median(df):.2f}% | {100 * statistics.median(dz):.1f}% | {cover} |{note}")
+EOF
+if [ -n "${BENCH:-}" ]; then "$BENCH" --independent 20 2> /dev/null; fi

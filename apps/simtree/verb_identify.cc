@@ -27,7 +27,7 @@ struct IdentifyArgs {
   std::string input, links, tree, camera_pose, output, plots,
       estimator = ToString(identification::kDefaultEstimator);
   double release_time = -1, window = 0;
-  bool no_plots = false, no_compare = false, no_root = false, joint_poles = true;
+  bool no_plots = false, no_compare = false, no_root = false, joint_poles = false, per_link = false;
   double noise_mm = 0, gap_rate = tracking::TrackerErrorOptions{}.gap_start_rate;
   uint64_t seed = 1;
   std::string write_noisy, visibility;
@@ -62,10 +62,14 @@ void AddIdentifyOptions(CLI::App* verb, IdentifyArgs& a) {
                    "Seconds of free decay to use after the release (0: to the end)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  verb->add_flag("--joint-poles,!--per-link", a.joint_poles,
-                 "damped_sinusoid_fit values from poles fitted to all measured links at once "
-                 "(they share the tree's modes; each link's own amplitudes pick its dominant "
-                 "mode), the default; --per-link fits every link on its own");
+  auto* joint = verb->add_flag(
+      "--joint-poles", a.joint_poles,
+      "damped_sinusoid_fit values of every link from the poles fitted to all measured links at "
+      "once (the tree's shared modes). Default: each link reads the shared poles only when its "
+      "record supports them (BIC against its own fit; materials.json links[].poles says which)");
+  verb->add_flag("--per-link", a.per_link,
+                 "damped_sinusoid_fit values of every link from its own fit alone")
+      ->excludes(joint);
   verb->add_flag("--no-root", a.no_root, "Do not estimate the root (trunk) marker's motion");
   verb->add_option("--plots", a.plots,
                    "Folder for one spectra PNG per link (default: <out>_spectra beside --out)");
@@ -168,7 +172,8 @@ void RunIdentify(const IdentifyArgs& a) {
   if (a.release_time >= 0) options.release_time_s = a.release_time;
   options.window_s = a.window;
   options.include_root = !a.no_root;
-  options.joint_poles = a.joint_poles;
+  options.joint_poles = !a.per_link;
+  options.choose_per_link = !a.joint_poles;
   const identification::IdentificationResult result =
       identification::IdentifyMaterials(trajectories, markers, options, in.trajectories.string());
   spdlog::info("release: {}", result.release.note);

@@ -81,6 +81,7 @@ TEST(Identify, JointPolesKeepEachLinksOwnDominantMode) {
   noise.seed = 4;
   IdentifyOptions options;
   options.joint_poles = true;
+  options.choose_per_link = false;  // every link on the joint poles (--joint-poles)
   const IdentificationResult r =
       IdentifyMaterials(tracking::SimulateTrackerError(truth, noise), markers, options);
   EXPECT_EQ(r.joint_poles, JointPolesOutcome::kApplied) << r.joint_poles_note;

@@ -50,6 +50,10 @@ TEST(MaterialsFile, JsonRoundTripWritesNullForWhatWasNotEstimated) {
   EXPECT_TRUE(j["links"][3]["frequency_hz"].is_null());
   EXPECT_EQ(j["links"][3]["status"], "missing_marker");
   EXPECT_EQ(j["links"][1]["estimators"].size(), 3u);
+  // Which poles the fit's value was read on, and why; none for a link without a value.
+  EXPECT_THAT(j["links"][1]["poles"]["used"].get<std::string>(), ::testing::AnyOf("shared", "own"));
+  EXPECT_THAT(j["links"][1]["poles"]["why"].get<std::string>(), HasSubstr("BIC"));
+  EXPECT_TRUE(j["links"][3]["poles"].is_null());
   const auto dir = test::TempDir();
   WriteMaterialsJson(m, dir / "m.json");
   const MaterialsFile back = ReadMaterialsJson(dir / "m.json");

@@ -9,6 +9,7 @@
 
 #include "simtree/core/error.h"
 #include "simtree/core/option_checks.h"
+#include "simtree/identification/detail/link_model_choice.h"
 
 namespace simtree::identification {
 
@@ -210,48 +211,67 @@ std::vector<LinkIdentification> EstimateLinks(const Trajectories& trajectories,
   return out;
 }
 
-// The damped sinusoid fit's estimate of every link it measured, re-read on joint poles.
+// The damped sinusoid fit's estimate of every link it measured, re-read on joint poles where
+// the link's record supports them (all of them with choose_per_link off).
 void ApplyJointPoles(const IdentifyOptions& options, IdentificationResult& out) {
   constexpr EstimatorKind kFit = EstimatorKind::kDampedSinusoidFit;
   std::vector<SignalEstimate*> estimates;
   std::vector<SampledSignal> signals;
   std::vector<LinkIdentification*> links;
   for (LinkIdentification& link : out.links) {
+    link.poles.own.status = link.poles.joint.status = EstimateStatus::kFailed;
     for (SignalEstimate& e : link.estimates) {
       if (e.estimator != kFit || e.dominant.status != EstimateStatus::kOk) continue;
       estimates.push_back(&e);
       signals.push_back(link.deflection.signal);
       links.push_back(&link);
+      link.poles.own = e.dominant;
+      link.poles.why = "own fit (per link)";
     }
   }
+  if (!options.joint_poles) return;
   if (signals.size() < 2) {
     out.joint_poles = JointPolesOutcome::kTooFewLinks;
     out.joint_poles_note =
         fmt::format("joint poles: {} link measured, nothing to join", signals.size());
+    for (LinkIdentification* link : links) link->poles.why = "own fit: no other link to share";
     return;
   }
   JointPoles joint = EstimateJointPoles(signals, options.estimation, options.joint);
   out.joint_poles_note = joint.message;
   if (!joint.ok) {
     out.joint_poles = JointPolesOutcome::kNoPoles;
+    for (LinkIdentification* link : links) link->poles.why = "own fit: the joint fit found no mode";
     return;
   }
   out.joint_poles = JointPolesOutcome::kApplied;
-  int kept = 0;
+  std::vector<LinkModelChoice> choices;
+  if (options.choose_per_link) {
+    std::vector<const DampedSinusoidFit*> own;
+    for (SignalEstimate* e : estimates) own.push_back(&*e->fit);
+    choices = ChooseLinkModels(signals, own, joint.fit);
+  }
+  int shared = 0;
   for (size_t i = 0; i < signals.size(); ++i) {
     SignalEstimate& e = joint.links[i];
+    LinkPolesUse& use = links[i]->poles;
+    use.joint = e.dominant;
     if (e.dominant.status != EstimateStatus::kOk) {
-      ++kept;
+      use.why = "own fit: no joint mode";
       continue;
     }
+    use.why = choices.empty() ? "shared poles (forced: --joint-poles)" : choices[i].reason;
+    if (!choices.empty() && !choices[i].joint) continue;
+    ++shared;
+    use.shared = true;
     const std::string& own = estimates[i]->dominant.message;
     e.dominant.message = own.empty() ? "joint poles" : own + "; joint poles";
     *estimates[i] = std::move(e);
     if (estimates[i] == &links[i]->estimates.front()) links[i]->value = estimates[i]->dominant;
   }
-  if (kept > 0) {
-    out.joint_poles_note += fmt::format("; {} links keep their own fit (no joint mode)", kept);
-  }
+  out.joint_poles_note +=
+      fmt::format("; {} of {} links read the shared poles{}", shared, signals.size(),
+                  choices.empty() ? " (forced)" : ", the others their own fit (BIC per link)");
 }
 
 }  // namespace
@@ -284,7 +304,7 @@ IdentificationResult IdentifyMaterials(const Trajectories& input,
   out.estimators = EstimatorsToRun(options);
   out.links = EstimateLinks(trajectories, markers, decay, out.estimators, options);
   // The tree's modes are shared by every link: read the measured links on poles fitted to all.
-  if (options.joint_poles) ApplyJointPoles(options, out);
+  ApplyJointPoles(options, out);
   return out;
 }
 

@@ -49,6 +49,10 @@ struct IdentifyOptions {
   // own). A tree's modes are shared by every link, and links that mix two close modes in
   // different ratios tell them apart where one link cannot (docs/identification.md).
   bool joint_poles = true;
+  // With joint poles: each link keeps the joint reading only when its own record supports it
+  // (detail/link_model_choice.h: BIC of the shared poles against the link's own fit); a link
+  // that rings at its own frequencies keeps its own fit. False: every link reads the joint poles.
+  bool choose_per_link = true;
   JointPolesOptions joint;  // the joint fit (detail/joint_poles.h)
 
   // Throws InputError naming the field ("estimation.max_modes") for a value out of range.
@@ -65,10 +69,18 @@ enum class JointPolesOutcome {
 // "off", "too_few_links", "no_poles", "applied".
 const char* ToString(JointPolesOutcome outcome);
 
+// Which poles a link's damped sinusoid fit was read on, and why (materials.json "poles").
+struct LinkPolesUse {
+  bool shared = false;       // the joint poles (else the link's own fit)
+  std::string why;           // for a person: the override, or the criterion's numbers
+  ModalEstimate own, joint;  // both readings of the fit's dominant mode (kFailed when not made)
+};
+
 struct LinkIdentification {
   DeflectionSignal deflection;
   ModalEstimate value;                    // the chosen estimator's dominant mode
   std::vector<SignalEstimate> estimates;  // the chosen estimator first, then the others
+  LinkPolesUse poles;                     // the damped sinusoid fit's poles
 
   const SignalEstimate* Find(EstimatorKind kind) const;
   bool measured() const { return value.status == EstimateStatus::kOk; }

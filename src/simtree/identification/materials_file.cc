@@ -122,6 +122,16 @@ LinkMaterial LinkFromJson(const JsonNode& j) {
       l.estimators.emplace_back(*kind, EstimateFromJson(node));
     }
   }
+  if (const auto poles = j.Find("poles"); poles && !poles->is_null()) {
+    poles->ExpectObject();
+    l.poles = poles->Field("used").String();
+    if (l.poles != "shared" && l.poles != "own") {
+      poles->Fail(fmt::format("used: expected shared or own, got \"{}\"", l.poles));
+    }
+    if (const auto why = poles->Find("why")) l.poles_why = why->String();
+    if (const auto shared = poles->Find("shared")) l.shared_reading = EstimateFromJson(*shared);
+    if (const auto own = poles->Find("own")) l.own_reading = EstimateFromJson(*own);
+  }
   return l;
 }
 
@@ -192,6 +202,12 @@ MaterialsFile MaterialsFromIdentification(const IdentificationResult& result,
       }
       for (const SignalEstimate& e : link.estimates)
         l.estimators.emplace_back(e.estimator, e.dominant);
+      if (!link.poles.why.empty()) {
+        l.poles = link.poles.shared ? "shared" : "own";
+        l.poles_why = link.poles.why;
+        l.shared_reading = link.poles.joint;
+        l.own_reading = link.poles.own;
+      }
     } else {
       l.planes = {link.value, link.value};
     }
@@ -278,6 +294,11 @@ nlohmann::ordered_json MaterialsToJson(const MaterialsFile& m) {
     ojson estimators = ojson::object();
     for (const auto& [kind, e] : l.estimators) estimators[ToString(kind)] = EstimateToJson(e);
     j["estimators"] = std::move(estimators);
+    j["poles"] = l.poles.empty() ? ojson(nullptr)
+                                 : ojson{{"used", l.poles},
+                                         {"why", l.poles_why},
+                                         {"shared", EstimateToJson(l.shared_reading)},
+                                         {"own", EstimateToJson(l.own_reading)}};
     links.push_back(std::move(j));
   }
   doc["links"] = std::move(links);

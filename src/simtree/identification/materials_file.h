@@ -30,6 +30,12 @@ struct LinkMaterial {
   ModalEstimate value;                  // the chosen estimator's
   std::array<ModalEstimate, 2> planes;  // u, w (or the two principal directions of the root)
   std::vector<std::pair<EstimatorKind, ModalEstimate>> estimators;  // every estimator run
+  // Which poles the damped sinusoid fit's value was read on ("shared": the tree's joint poles,
+  // "own": the link's own fit) and why; empty when the fit measured nothing.
+  std::string poles, poles_why;
+  // Both readings of the fit's dominant mode (status kFailed when not made): on the shared poles
+  // and on the link's own fit, whichever `poles` chose.
+  ModalEstimate shared_reading, own_reading;
 };
 
 // The three modes a measured branch gets. `assumed[k]` is true for a mode taken from the

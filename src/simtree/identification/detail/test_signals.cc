@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -117,6 +118,80 @@ Trajectories MakeMarkerTrajectories(const SyntheticMarkerTree& tree, double fps,
     out.AddFrame(i, time, position, std::vector<bool>(count, true));
   }
   return out;
+}
+
+void IndependentTreeOptions::Validate() const {
+  CheckAtLeast("links", links, 1);
+  CheckPositive("min_frequency_hz", min_frequency_hz);
+  CheckThat(max_frequency_hz >= min_frequency_hz, "max_frequency_hz", ">= min_frequency_hz",
+            max_frequency_hz);
+  CheckThat(min_damping > 0 && min_damping < 1, "min_damping", "a damping ratio in (0, 1)",
+            min_damping);
+  CheckThat(max_damping >= min_damping && max_damping < 1, "max_damping",
+            "a damping ratio in [min_damping, 1)", max_damping);
+  CheckNonNegative("min_plane_split", min_plane_split);
+  CheckThat(max_plane_split >= min_plane_split, "max_plane_split", ">= min_plane_split",
+            max_plane_split);
+  CheckPositive("min_angle_rad", min_angle_rad);
+  CheckThat(max_angle_rad >= min_angle_rad, "max_angle_rad", ">= min_angle_rad", max_angle_rad);
+  CheckPositive("root_amplitude_m", root_amplitude_m);
+}
+
+namespace {
+
+// What a record `record_s` long shows of a mode: its amplitude times the integral of its envelope.
+double PeakWeight(const DampedSinusoid& m, double record_s) {
+  const double s = m.damping_ratio * kTwoPi * m.frequency_hz;
+  return m.amplitude * (1 - std::exp(-s * record_s)) / s;
+}
+
+// Two modes of one damping ratio, `split` apart in frequency, the second weaker by `ratio`; the
+// stronger of the two (by PeakWeight) goes to `truth`.
+std::pair<DampedSinusoid, DampedSinusoid> PlanePair(std::mt19937_64& rng,
+                                                    const IndependentTreeOptions& o,
+                                                    double amplitude, double record_s,
+                                                    DampedSinusoid* truth) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  auto in = [&](double lo, double hi) { return lo + (hi - lo) * u(rng); };
+  const double zeta = in(o.min_damping, o.max_damping);
+  const double f_low = in(o.min_frequency_hz, o.max_frequency_hz / (1 + o.max_plane_split));
+  const double f_high = f_low * (1 + in(o.min_plane_split, o.max_plane_split));
+  DampedSinusoid a{f_low, zeta, amplitude, in(0, kTwoPi)};
+  DampedSinusoid b{f_high, zeta, amplitude * in(0.3, 0.8), in(0, kTwoPi)};
+  if (u(rng) < 0.5) std::swap(a.amplitude, b.amplitude);
+  *truth = PeakWeight(a, record_s) >= PeakWeight(b, record_s) ? a : b;
+  return {a, b};
+}
+
+}  // namespace
+
+SyntheticMarkerTree MakeIndependentModeTree(const IndependentTreeOptions& options, double record_s,
+                                            std::vector<DampedSinusoid>* truth) {
+  options.Validate();
+  std::mt19937_64 rng(options.seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  SyntheticMarkerTree tree;
+  std::vector<DampedSinusoid> dominant(options.links + 1);
+  const auto [rx, rz] = PlanePair(rng, options, options.root_amplitude_m, record_s, &dominant[0]);
+  tree.root_motion[0] = {rx};
+  tree.root_motion[2] = {rz};
+  for (int k = 0; k < options.links; ++k) {
+    SyntheticLink link;
+    link.parent = k == 0 ? -1 : (k - 1) / 2;
+    // Up and outwards, each at its own azimuth (camera frame: y down, z away from the camera).
+    const double azimuth = kTwoPi * u(rng), lean = 0.3 + 0.6 * u(rng);
+    link.rest_direction = Eigen::Vector3d(std::sin(lean) * std::cos(azimuth), -std::cos(lean),
+                                          std::sin(lean) * std::sin(azimuth));
+    link.length_m = 0.4 + 0.4 * u(rng);
+    const double angle =
+        options.min_angle_rad + (options.max_angle_rad - options.min_angle_rad) * u(rng);
+    const auto [a, b] = PlanePair(rng, options, angle, record_s, &dominant[k + 1]);
+    link.theta_u = {a};
+    link.theta_w = {b};
+    tree.links.push_back(std::move(link));
+  }
+  if (truth) *truth = std::move(dominant);
+  return tree;
 }
 
 }  // namespace simtree::identification

@@ -63,4 +63,27 @@ struct SyntheticMarkerTree {
 Trajectories MakeMarkerTrajectories(const SyntheticMarkerTree& tree, double fps, double hold_s,
                                     double decay_s, std::vector<MarkerLink>* markers);
 
+// A marker tree whose links ring on their own, the paper's per-branch model (Fig. 8): each link's
+// two bending planes at frequencies a few percent apart with one damping ratio, drawn inside the
+// paper's Table IV ranges; each child link rides on its parent's rotation (link k > 0 hangs from
+// link (k - 1) / 2); the root marker moves along two camera axes at two frequencies of its own.
+// No two links share a mode: the opposite of a whole-tree FEM record, where every link reads the
+// same global modes.
+struct IndependentTreeOptions {
+  int links = 6;  // besides the root marker's displacement
+  double min_frequency_hz = 0.72, max_frequency_hz = 1.50;
+  double min_damping = 0.022, max_damping = 0.060;
+  double min_plane_split = 0.03, max_plane_split = 0.08;  // relative, between the two planes
+  double min_angle_rad = 0.06, max_angle_rad = 0.15;      // the stronger plane's amplitude
+  double root_amplitude_m = 0.012;                        // the root's stronger axis
+  uint64_t seed = 1;
+
+  // Throws InputError naming the field for a value out of range.
+  void Validate() const;
+};
+// `truth` receives, per marker (0: the root's displacement, k + 1: link k), the mode a record of
+// `record_s` would call dominant (the larger amplitude times the integral of its envelope).
+SyntheticMarkerTree MakeIndependentModeTree(const IndependentTreeOptions& options, double record_s,
+                                            std::vector<DampedSinusoid>* truth);
+
 }  // namespace simtree::identification
