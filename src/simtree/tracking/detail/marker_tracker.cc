@@ -16,8 +16,10 @@ constexpr double kPartialWeight = 0.7;
 // Blobs this close (px at 640 px width) at one depth may be pieces of one tape.
 constexpr double kFragmentPx = 8.0;
 // A blob this much nearer another marker's predicted pixel (and compatible with its depth)
-// belongs to that marker (see OwnedByAnother).
+// belongs to that marker (see OwnedByAnother); in the first frame, where two clicks may lie a
+// pixel apart on two tapes one behind the other, only a blob far nearer one click than the other.
 constexpr double kOwnerRatio = 0.8;
+constexpr double kFirstFrameOwnerRatio = 0.5;
 // A detection without depth weaker than this share of the marker's usual tape is not taken: a
 // few noise pixels of the tape's hue (camera colour) that would drag the marker off its tape.
 constexpr double kWeakNoDepth = 0.5;
@@ -166,7 +168,8 @@ bool MarkerTracker::OwnedByAnother(int i, const Detection& det) const {
     if (static_cast<int>(j) == i) continue;
     const bool active = (o.started || first_frame_) && o.coast <= options_.max_coast_frames;
     if (!active) continue;
-    if ((det.center - o.pixel).norm() >= kOwnerRatio * own) continue;
+    const double ratio = o.started ? kOwnerRatio : kFirstFrameOwnerRatio;
+    if ((det.center - o.pixel).norm() >= ratio * own) continue;
     const bool depth_fits =
         !tracked || !o.started || !det.has_depth ||
         std::abs(det.position.z() - o.motion.position().z()) <= options_.gate_mm / 1000.0;
