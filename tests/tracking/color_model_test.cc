@@ -23,6 +23,18 @@ TEST(ColorModel, HoldsUnderShadeAndSunButRejectsBarkAndGrey) {
   EXPECT_FALSE(red.Contains(10, 1, 1));  // too dark to have a hue
 }
 
+TEST(ColorModel, CameraOrangeBarkIsNotTapeButFaintTapeNearItsHueIs) {
+  const TapeColorModel red = ColorModelFromName("red");
+  // Bark a camera's white balance and chroma smearing turned orange-red: hue 20, saturation 0.5,
+  // inside the hue interval and above the least saturation.
+  EXPECT_FALSE(red.Contains(120, 80, 60));
+  EXPECT_LT(red.Weight(120, 80, 60), 0.1f);  // 0.55 with a flat saturation threshold
+  // Tape as faint but at its own hue (-5 degrees): still tape.
+  EXPECT_TRUE(red.Contains(120, 60, 65));
+  // Far from the hue centre only a strongly saturated pixel counts.
+  EXPECT_TRUE(red.Contains(200, 70, 20));  // hue 20, saturation 0.9
+}
+
 TEST(ColorModel, WeightGradesMixedPixels) {
   const TapeColorModel red = ColorModelFromName("red");
   const float full = red.Weight(200, 25, 30);

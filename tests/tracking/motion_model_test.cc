@@ -21,6 +21,18 @@ TEST(MotionModel, ConstantVelocityLearnsTheVelocityAndPredictsAhead) {
   EXPECT_LT((model.position() - (Eigen::Vector3d(0, 0, 2) + v * 31 * dt)).norm(), 0.002);
 }
 
+TEST(MotionModel, ScaleVelocityShrinksOnlyTheVelocity) {
+  MarkerMotionModel model(MotionModelParams{}, Eigen::Vector3d(0, 0, 2));
+  for (int k = 1; k <= 10; ++k) {
+    model.Predict(1.0 / 30.0);
+    model.Update(Eigen::Vector3d(0.01 * k, 0, 2));
+  }
+  const Eigen::Vector3d p = model.position(), v = model.velocity();
+  model.ScaleVelocity(0.5);
+  EXPECT_LT((model.velocity() - 0.5 * v).norm(), 1e-12);
+  EXPECT_LT((model.position() - p).norm(), 1e-12);
+}
+
 TEST(MotionModel, UncertaintyGrowsWhileCoasting) {
   MarkerMotionModel model(MotionModelParams{}, Eigen::Vector3d(0, 0, 2));
   const double before = model.position_sigma().norm();

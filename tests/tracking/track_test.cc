@@ -151,6 +151,68 @@ TEST_F(TrackTest, AMarkerThatNeverAppearsIsReportedAndNeverInvented) {
   EXPECT_EQ(r.trajectories.tracks[0].valid_count(), 5);
 }
 
+TEST_F(TrackTest, AMarkerNotYetFoundNeverTakesATrackedNeighboursTape) {
+  // Marker 1's tape never shows; its click lies 10 px from marker 0. In frame 5 marker 0's depth
+  // jumps 0.25 m (a mixed depth), so marker 0 cannot take its own blob: marker 1 must not either.
+  test::DrawnStream s;
+  for (int f = 0; f < 10; ++f) {
+    const double z = f == 5 ? 1.75 : 1.5;
+    s.positions.push_back({Eigen::Vector3d(0.0, 0.0, z), Eigen::Vector3d(0, 0, -1.0)});
+  }
+  const fs::path pull = test::TempDir() / "pull";
+  TrackInit init = test::WriteDrawnStream(s, pull);
+  init.markers[1].pixel = init.markers[0].pixel + Eigen::Vector2d(10.0, 0.0);
+  const TrackResult r = Track(pull, init, TrackOptions{});
+  EXPECT_EQ(r.trajectories.tracks[1].valid_count(), 0);
+  EXPECT_EQ(r.trajectories.tracks[0].valid_count(), 9);
+}
+
+TEST_F(TrackTest, ACoastingMarkersPredictionSlowsDown) {
+  // Marker 0 moves 0.3 m/s across the image, hides for 8 frames and shows again where it hid
+  // (a swing turning back): its prediction must not run on at full speed.
+  test::DrawnStream s;
+  for (int f = 0; f < 34; ++f) {
+    const double x = 0.01 * std::min(f, 19);
+    s.positions.push_back({Eigen::Vector3d(x, 0.0, 1.5)});
+    if (f >= 20 && f < 28) s.positions.back()[0].z() = -1.0;
+  }
+  const fs::path pull = test::TempDir() / "pull";
+  const TrackInit init = test::WriteDrawnStream(s, pull);
+  const TrackResult r = Track(pull, init, TrackOptions{});
+  const Eigen::Vector2d hid = s.intrinsics.Project(s.positions[19][0]);
+  const auto& coast = r.boxes[27].markers[0];
+  EXPECT_EQ(coast.state, MarkerState::kPredicted);
+  EXPECT_LT((Eigen::Vector2d(coast.center[0], coast.center[1]) - hid).norm(), 5.0);
+  EXPECT_TRUE(r.trajectories.tracks[0].valid[30]);
+}
+
+TEST_F(TrackTest, AFewTapeColouredPixelsWithoutDepthAreNotTheMarker) {
+  // From frame 10 marker 0's tape is gone; 2 x 2 pixels of its colour without depth (camera
+  // noise) lie 3 px beside where it was.
+  test::DrawnStream s;
+  for (int f = 0; f < 16; ++f) {
+    s.positions.push_back({Eigen::Vector3d(0.0, 0.0, f < 10 ? 1.5 : -1.0)});
+  }
+  const fs::path pull = test::TempDir() / "pull";
+  const TrackInit init = test::WriteDrawnStream(s, pull);
+  const Eigen::Vector2d at = init.markers[0].pixel;
+  for (int f = 10; f < 16; ++f) {
+    RgbdImage image = test::DrawFrame(s, s.positions[f]);
+    for (int y = 0; y < 2; ++y) {
+      for (int x = 0; x < 2; ++x) {
+        const int px = static_cast<int>(at.x()) + 3 + x, py = static_cast<int>(at.y()) + y;
+        for (int ch = 0; ch < 3; ++ch) image.color.at(px, py, ch) = s.tape[ch];
+        image.depth.at(px, py) = 0;
+      }
+    }
+    WritePullFrame(pull, f, f / s.fps, image.color, image.depth);
+  }
+  const TrackResult r = Track(pull, init, TrackOptions{});
+  for (int f = 10; f < 16; ++f) {
+    EXPECT_NE(r.boxes[f].markers[0].state, MarkerState::kTracked) << "frame " << f;
+  }
+}
+
 TEST_F(TrackTest, OptionsOutOfRangeNameTheField) {
   TrackOptions o;
   o.gate_mm = -1;

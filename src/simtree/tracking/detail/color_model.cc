@@ -63,19 +63,31 @@ double HueDistance(double a_deg, double b_deg) {
   return d > 180.0 ? 360.0 - d : d;
 }
 
+double TapeColorModel::MinSaturationAt(double hue_distance_deg) const {
+  if (hue_distance_deg <= hue_core_deg || hue_tolerance_deg <= hue_core_deg) return min_saturation;
+  const double t =
+      std::min(1.0, (hue_distance_deg - hue_core_deg) / (hue_tolerance_deg - hue_core_deg));
+  return min_saturation + t * std::max(0.0, edge_saturation - min_saturation);
+}
+
 bool TapeColorModel::Contains(uint8_t r, uint8_t g, uint8_t b) const {
   float h, s, v;
   RgbToHsv(r, g, b, &h, &s, &v);
-  return v >= min_value && s >= min_saturation && HueDistance(h, hue_deg) <= hue_tolerance_deg;
+  if (v < min_value) return false;
+  const double d = HueDistance(h, hue_deg);
+  return d <= hue_tolerance_deg && s >= MinSaturationAt(d);
 }
 
 float TapeColorModel::Weight(uint8_t r, uint8_t g, uint8_t b) const {
   float h, s, v;
   RgbToHsv(r, g, b, &h, &s, &v);
   if (v < 0.5 * min_value) return 0.0f;
-  const float low = static_cast<float>(0.7 * min_saturation);
-  const float sat = Clamp01((s - low) / static_cast<float>(full_saturation - low));
-  const double hue_out = HueDistance(h, hue_deg) - hue_tolerance_deg;
+  const double d = HueDistance(h, hue_deg);
+  const double least = MinSaturationAt(std::min(d, hue_tolerance_deg));
+  const float low = static_cast<float>(0.7 * least);
+  const float full = static_cast<float>(std::max(full_saturation, least + 0.05));
+  const float sat = Clamp01((s - low) / (full - low));
+  const double hue_out = d - hue_tolerance_deg;
   const float hue = hue_out <= 0.0 ? 1.0f : Clamp01(1.0f - static_cast<float>(hue_out / 10.0));
   const float val = Clamp01(static_cast<float>((v - 0.5 * min_value) / (0.5 * min_value)));
   return sat * hue * val;
@@ -132,8 +144,7 @@ TapeColorModel FitColorModel(const TapeColorModel& prior, const RgbImage& image,
         float h, s, v;
         RgbToHsv(image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2), &h, &s, &v);
         // Tape by the prior: the window also holds bark, which may be reddish.
-        if (v < prior.min_value || s < prior.min_saturation) continue;
-        if (HueDistance(h, prior.hue_deg) > prior.hue_tolerance_deg) continue;
+        if (!prior.Contains(image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2))) continue;
         hues.push_back(h);
         sats.push_back(s);
         values.push_back(v);

@@ -4,6 +4,11 @@
 // tape is shaded or lit by the sun, so the model holds under both; brightness only rejects pixels
 // too dark to have a hue. `Weight` grades a pixel from 0 (not tape) to 1 (all tape), so a pixel
 // half covered by tape counts about half: what sub-pixel centres and band boxes are made from.
+//
+// Away from the hue centre the least saturation rises: a camera's white balance and MJPEG chroma
+// smearing turn bark orange-red (hue 10-35 degrees from a red tape, saturation 0.3-0.6), while
+// the tape's own pixels keep their hue within a few degrees or their saturation; a flat interval
+// wide enough for shaded tape also took that bark, whose depth then moved the marker.
 
 #include <cstdint>
 #include <string>
@@ -21,6 +26,11 @@ struct TapeColorModel {
   double min_saturation = 0.45;     // (max - min) / max of R, G, B
   double full_saturation = 0.65;    // saturation from which a pixel counts as all tape
   double min_value = 28.0;          // max of R, G, B (0-255)
+  double hue_core_deg = 8.0;        // within this of the centre min_saturation applies ...
+  double edge_saturation = 0.75;    // ... rising linearly to this at hue_tolerance_deg
+
+  // The least saturation of a tape pixel `hue_distance_deg` from the centre.
+  double MinSaturationAt(double hue_distance_deg) const;
 
   // True when the pixel is tape (hue inside the interval, saturated and bright enough).
   bool Contains(uint8_t r, uint8_t g, uint8_t b) const;

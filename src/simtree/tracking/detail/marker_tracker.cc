@@ -15,6 +15,18 @@ constexpr double kForbidden = std::numeric_limits<double>::infinity();
 constexpr double kPartialWeight = 0.7;
 // Blobs this close (px at 640 px width) at one depth may be pieces of one tape.
 constexpr double kFragmentPx = 8.0;
+// A blob this much nearer another marker's predicted pixel (and compatible with its depth)
+// belongs to that marker (see OwnedByAnother); in the first frame, where two clicks may lie a
+// pixel apart on two tapes one behind the other, only a blob far nearer one click than the other.
+constexpr double kOwnerRatio = 0.8;
+constexpr double kFirstFrameOwnerRatio = 0.5;
+// A detection without depth weaker than this share of the marker's usual tape is not taken: a
+// few noise pixels of the tape's hue (camera colour) that would drag the marker off its tape.
+constexpr double kWeakNoDepth = 0.5;
+// While a marker coasts its velocity decays by this per frame: a branch swings back within a
+// fraction of a second, and a velocity fitted to a partly hidden tape's jumping centre carried
+// markers tens of pixels off before they were lost.
+constexpr double kCoastVelocityDecay = 0.7;
 
 }  // namespace
 
@@ -86,6 +98,7 @@ double MarkerTracker::Cost(const Marker& m, const Detection& det) const {
     }
     return cost;
   }
+  if (!det.has_depth && det.weight < kWeakNoDepth * m.typical_weight) return kForbidden;
   const Eigen::Vector3d p = m.motion.position();
   const Eigen::Vector3d sigma = m.motion.position_sigma();
   const double sigma_px = std::max(sigma.x(), sigma.y()) * intrinsics_.fx / std::max(p.z(), 0.1);
@@ -125,7 +138,8 @@ std::vector<int> MarkerTracker::Assign(const std::vector<Detection>& detections)
                                           std::vector<double>(detections.size(), kForbidden));
     for (size_t r = 0; r < rows.size(); ++r) {
       for (size_t d = 0; d < detections.size(); ++d) {
-        if (!taken[d]) cost[r][d] = Cost(markers_[rows[r]], detections[d]);
+        if (taken[d] || OwnedByAnother(rows[r], detections[d])) continue;
+        cost[r][d] = Cost(markers_[rows[r]], detections[d]);
       }
     }
     const std::vector<int> solved = SolveAssignment(cost, kForbidden);
@@ -137,6 +151,31 @@ std::vector<int> MarkerTracker::Assign(const std::vector<Detection>& detections)
   }
   DropNeighbourFragments(detections, &assignment);
   return assignment;
+}
+
+bool MarkerTracker::OwnedByAnother(int i, const Detection& det) const {
+  // A blob belongs to the marker whose predicted (or clicked) pixel lies nearest, among markers
+  // whose depth it fits: when that marker cannot take it (its tape too faint, its depth off), a
+  // neighbour a few pixels away must not either. Camera colour loses tiny tapes for frames at a
+  // time, and their neighbours (10-30 px apart on acer_rubrum) took them: identity swaps.
+  // A marker not being tracked (lost, or never found) has no depth of its own to tell its tape
+  // from the blob a tracked neighbour's depth rejected: the image decides.
+  const Marker& m = markers_[i];
+  const bool tracked = m.started && m.coast <= options_.max_coast_frames;
+  const double own = (det.center - m.pixel).norm();
+  for (size_t j = 0; j < markers_.size(); ++j) {
+    const Marker& o = markers_[j];
+    if (static_cast<int>(j) == i) continue;
+    const bool active = (o.started || first_frame_) && o.coast <= options_.max_coast_frames;
+    if (!active) continue;
+    const double ratio = o.started ? kOwnerRatio : kFirstFrameOwnerRatio;
+    if ((det.center - o.pixel).norm() >= ratio * own) continue;
+    const bool depth_fits =
+        !tracked || !o.started || !det.has_depth ||
+        std::abs(det.position.z() - o.motion.position().z()) <= options_.gate_mm / 1000.0;
+    if (depth_fits) return true;
+  }
+  return false;
 }
 
 void MarkerTracker::DropNeighbourFragments(const std::vector<Detection>& detections,
@@ -223,6 +262,7 @@ MarkerFrameResult MarkerTracker::Unmeasured(Marker& m) {
   out.box.marker = m.id;
   ++m.coast;
   const bool coasting = m.started && m.coast <= options_.max_coast_frames;
+  if (coasting) m.motion.ScaleVelocity(kCoastVelocityDecay);
   out.box.state = coasting ? MarkerState::kPredicted : MarkerState::kLost;
   if (m.started && m.coast == options_.max_coast_frames + 1) {
     m.motion.ResetVelocity();

@@ -52,6 +52,7 @@ class MarkerTracker {
   std::vector<SearchWindow> Windows() const;
   double Cost(const Marker& marker, const Detection& det) const;
   std::vector<int> Assign(const std::vector<Detection>& detections);
+  bool OwnedByAnother(int marker, const Detection& det) const;
   void DropNeighbourFragments(const std::vector<Detection>& detections,
                               std::vector<int>* assignment) const;
   MarkerFrameResult Measured(Marker& marker, const Detection& det);

@@ -73,6 +73,10 @@ void MarkerMotionModel::ResetVelocity() {
   }
 }
 
+void MarkerMotionModel::ScaleVelocity(double factor) {
+  for (Axis& axis : axes_) axis.x[1] *= factor;
+}
+
 Eigen::Vector3d MarkerMotionModel::position() const {
   return {axes_[0].x[0], axes_[1].x[0], axes_[2].x[0]};
 }

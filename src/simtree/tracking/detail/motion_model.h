@@ -35,6 +35,8 @@ class MarkerMotionModel {
   void Update(const Eigen::Vector3d& measured);
   // Forgets the velocity (after a long loss: the marker may come back anywhere near its path).
   void ResetVelocity();
+  // Multiplies the velocity by `factor` (a coasting marker's velocity is trusted less and less).
+  void ScaleVelocity(double factor);
 
   Eigen::Vector3d position() const;
   Eigen::Vector3d velocity() const;
