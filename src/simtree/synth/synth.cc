@@ -705,23 +705,24 @@ SynthReport RunSynth(const SynthOptions& options, const fs::path& out) {
       ChoosePull(tree, MarkerPlacementOptions{}.min_radius_m, options.pull_position);
   const Eigen::Isometry3d pull_camera = PullCameraPose(tree, pull_setup.outward);
   const SensorModel sensor = options.hard ? SensorModel::Hard() : SensorModel::AzureKinectNfov();
-  // The tripod: the depth camera where PullCameraPose puts it (so the tree, the markers and the
-  // depth camera's frames are the same at any colour size), the colour camera (if one of its own)
-  // beside it; the stream's images and ground truth are in the colour camera's frame.
+  // The tripod. With a colour camera of its own, the person frames the tree on the colour
+  // preview: the colour camera takes PullCameraPose's aim and the depth camera sits beside it
+  // (4.9 degrees lower); the stream's images and ground truth are in the colour camera's frame.
   PullRig rig{.world_from_depth = pull_camera, .depth_sensor = sensor, .color = std::nullopt};
   if (options.HasColorCamera()) {
     rig.color = AzureColorCamera::ForSize(options.color_width, options.color_height);
+    rig.world_from_depth = pull_camera * rig.color->color_from_depth;
   }
   MarkerPlacementOptions placement =
       TapePlacement(options, pull_setup, pull_camera, sensor.FocalLengthPx());
   SceneOptions scene_options =
       DefaultSceneOptions(tree, SeedFor(options.seed, Stream::kScene), options.hard);
-  // In the view of the stream's colour (the colour camera looks 5 degrees higher than the depth
-  // camera and 59 degrees high: the depth image's lower part is out of its view).
   if (options.hard) {
     scene_options.boxes.push_back(RedDistractor(rig.WorldFromImage(), rig.Intrinsics()));
   }
-  PlaceVisibleMarkers(tree, placement, sensor, pull_camera, scene_options,
+  // Tapes the stream's camera sees at rest (the colour camera's view is 59 degrees high, and 32 mm
+  // of parallax changes what hides a band at the edge of visibility).
+  PlaceVisibleMarkers(tree, placement, rig.ImageSensor(), rig.WorldFromImage(), scene_options,
                       SeedFor(options.seed, Stream::kPullNoise));
   tree.metadata.source = fmt::format("synth {} seed {}", species.name, options.seed);
   ReportTree(tree, report);
