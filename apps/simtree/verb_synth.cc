@@ -1,5 +1,8 @@
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
+#include <string>
+#include <utility>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -15,10 +18,28 @@ namespace fs = std::filesystem;
 
 namespace simtree::cli {
 
+namespace {
+
+// "1280x720" -> (1280, 720); which sizes are the camera's, synth checks.
+std::pair<int, int> ParseColorSize(const std::string& text) {
+  int width = 0, height = 0;
+  char separator = 0;
+  std::istringstream in(text);
+  if (!(in >> width >> separator >> height) || (separator != 'x' && separator != 'X') ||
+      !in.eof() || width <= 0 || height <= 0) {
+    throw InputError("synth", "--color-size",
+                     fmt::format("expected WIDTHxHEIGHT such as 1280x720, got \"{}\"", text));
+  }
+  return {width, height};
+}
+
+}  // namespace
+
 void RegisterSynth(CLI::App& app) {
   struct Args {
     synth::SynthOptions synth;
     std::string output, species_file;
+    std::string color_size = "640x576";
     bool list_species = false, no_sheet = false;
   };
   auto args = std::make_shared<Args>();
@@ -50,6 +71,13 @@ void RegisterSynth(CLI::App& app) {
                  "The pull stream's colour as rendered. Default: as a real camera delivers it "
                  "(white balance a little off, auto-exposure drifting, sensor noise, slight "
                  "defocus, MJPEG compression; --hard adds an exposure change)");
+  verb->add_option("--color-size", args->color_size,
+                   "The pull stream's colour camera, WxH: 640x576 (default) colour registered to "
+                   "the depth camera's pixels; an Azure Kinect colour size (1280x720, 1920x1080, "
+                   "2560x1440, 3840x2160, 2048x1536, 4096x3072) renders the colour camera beside "
+                   "the depth camera and registers depth into it, as real recordings are usually "
+                   "processed; the stream's intrinsics and gt/ are then the colour camera's")
+      ->capture_default_str();
   verb->add_option("--views", args->synth.views, "Static views (default 10; hard 7; quick 4)")
       ->check(CLI::Range(1, 72));
   verb->add_option("--duration", args->synth.duration_s,
@@ -89,6 +117,7 @@ void RegisterSynth(CLI::App& app) {
       "simtree synth --species acer_rubrum --seed 7 --out scene/",
       "simtree synth --quick --out /tmp/quick_scene",
       "simtree synth --species magnolia --seed 3 --hard --out hard_scene/",
+      "simtree synth --species magnolia --seed 1 --color-size 1280x720 --out hd_scene/",
       "simtree synth --species-file my_species.json --seed 1 --out custom/",
       "simtree synth --list-species",
   }));
@@ -103,6 +132,11 @@ void RegisterSynth(CLI::App& app) {
     synth::SynthOptions options = args->synth;
     options.species_file = args->species_file;
     options.contact_sheet = !args->no_sheet;
+    const std::pair<int, int> color_size = ParseColorSize(args->color_size);
+    if (color_size != std::pair{640, 576}) {
+      options.color_width = color_size.first;
+      options.color_height = color_size.second;
+    }
     if (!args->species_file.empty()) RefuseToOverwriteInputs(args->output, {args->species_file});
     const synth::SynthReport report = synth::RunSynth(options, args->output);
     spdlog::info("synth: {}", report.Summary());

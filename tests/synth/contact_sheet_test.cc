@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "simtree/core/error.h"
 
 namespace simtree::synth {
@@ -31,6 +33,29 @@ TEST(ContactSheet, EveryViewAppearsAsColourBesideDepth) {
     }
   }
   EXPECT_TRUE(found);
+}
+
+// Views of another shape (the pull stream's 1280 x 720 colour camera beside 640 x 576 scans) keep
+// their shape: the scan is fitted into the wide tile, 72 high and 64 x 72 / 58 = 79 wide, not
+// stretched to its 128 columns.
+TEST(ContactSheet, ImagesOfAnotherShapeKeepTheirShape) {
+  ContactSheetTile scan{"view_00", RgbImage(64, 58, 40), DepthImage(64, 58, 1500)};
+  ContactSheetTile pull{"pull", RgbImage(128, 72, 255), DepthImage(128, 72, 1500)};
+  ContactSheetOptions options;
+  options.columns = 1;
+  options.scale = 1.0;
+  const RgbImage sheet = MakeContactSheet({scan, pull}, options);
+  int rows = 0, widest = 0;
+  for (int y = 0; y < sheet.height; ++y) {
+    int run = 0;
+    for (int x = 0; x < sheet.width; ++x) {
+      run += sheet.at(x, y, 0) == 40 && sheet.at(x, y, 1) == 40 && sheet.at(x, y, 2) == 40;
+    }
+    rows += run >= 10;  // (not a stray label or depth pixel of that grey)
+    widest = std::max(widest, run);
+  }
+  EXPECT_EQ(widest, 79);
+  EXPECT_EQ(rows, 72);
 }
 
 TEST(ContactSheet, MismatchedOrMissingImagesAreRefused) {

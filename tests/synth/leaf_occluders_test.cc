@@ -40,6 +40,24 @@ TEST(LeafOccluders, EachLeafStartsClearOfItsMarkerAndLaterCrossesIt) {
   EXPECT_TRUE(PlanLeafOccluders(MarkerFrame2d{}, {.seed = 1}).empty());
 }
 
+// At another image size (a colour camera of its own) the leaves keep their angular size: every
+// length in pixels scales, the rest of the plan does not.
+TEST(LeafOccluders, PixelScaleScalesEveryLengthInPixels) {
+  const std::vector<LeafOccluder> base = PlanLeafOccluders(OneMarker(200, 150), {.seed = 5});
+  const std::vector<LeafOccluder> wide =
+      PlanLeafOccluders(OneMarker(300, 225), {.seed = 5, .pixel_scale = 1.5});
+  ASSERT_EQ(base.size(), wide.size());
+  for (size_t i = 0; i < base.size(); ++i) {
+    EXPECT_DOUBLE_EQ(wide[i].amplitude_px, 1.5 * base[i].amplitude_px);
+    EXPECT_DOUBLE_EQ(wide[i].half_length_px, 1.5 * base[i].half_length_px);
+    EXPECT_NEAR((wide[i].centre - Eigen::Vector2d(300, 225)).norm(),
+                1.5 * (base[i].centre - Eigen::Vector2d(200, 150)).norm(), 1e-9);
+    EXPECT_EQ(wide[i].period_s, base[i].period_s);
+    EXPECT_EQ(wide[i].depth_m, base[i].depth_m);
+  }
+  EXPECT_THROW(PlanLeafOccluders(OneMarker(200, 150), {.pixel_scale = 0.0}), InputError);
+}
+
 TEST(LeafOccluders, APaintedLeafHidesTheTapeInEveryImage) {
   RgbImage color(64, 48, 200);
   DepthImage depth(64, 48, 2500);

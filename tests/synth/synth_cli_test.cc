@@ -213,7 +213,12 @@ TEST(SynthCli, PullOptionsOutOfRangeAreRefusedBeforeAnythingIsWritten) {
            [](SynthOptions& o) { o.pull_position = std::nan(""); },
            [](SynthOptions& o) { o.max_pull_rotation_rad = 0.0; },
            [](SynthOptions& o) { o.max_pull_rotation_rad = 1.0; },
-           [](SynthOptions& o) { o.init_click_noise_px = -1.0; }}) {
+           [](SynthOptions& o) { o.init_click_noise_px = -1.0; },
+           [](SynthOptions& o) { o.color_width = 1280; },
+           [](SynthOptions& o) {
+             o.color_width = 1280;
+             o.color_height = 721;
+           }}) {
     SynthOptions options;
     options.quick = true;
     change(options);
@@ -246,6 +251,66 @@ TEST(SynthCli, HardStreamHidesMarkersBehindLeavesForAWhile) {
             test::ReadText(clean / "gt/markers_2d.json"));
   EXPECT_NE(test::ReadText(dir / "pull/color/000100.png"),
             test::ReadText(clean / "pull/color/000100.png"));
+}
+
+// --color-size 1280x720: the pull stream is the colour camera's throughout (intrinsics, colour,
+// depth registered into it, marker boxes, clicks, true tracks and pose), the scans stay as they
+// are; a size the camera does not have is refused before anything is written.
+TEST(SynthCli, ColorSizeMakesTheStreamTheColourCamerasThroughout) {
+  const fs::path tmp = test::TempDir();
+  for (const char* bad : {"1280x721", "1280", "big"}) {
+    const test::CliResult r = test::RunCli(std::string("synth --quick --color-size ") + bad +
+                                           " --out " + (tmp / "bad").string());
+    EXPECT_NE(r.exit_code, 0) << bad;
+    EXPECT_THAT(r.output, HasSubstr("color")) << bad;
+    EXPECT_THAT(r.output, HasSubstr(bad));
+    EXPECT_THAT(r.output, HasSubstr("1280x720")) << bad;  // what it takes
+    EXPECT_FALSE(fs::exists(tmp / "bad"));
+  }
+  const fs::path dir =
+      QuickCapture(tmp / "hd", "--duration 2 --views 1 --no-contact-sheet --color-size 1280x720");
+  const Capture capture = OpenCapture(dir);
+  ASSERT_TRUE(capture.pull.has_value());
+  const CameraIntrinsics& k = capture.pull->intrinsics;
+  EXPECT_EQ(k.width, 1280);
+  EXPECT_EQ(k.height, 720);
+  EXPECT_EQ(LoadScanView(capture.views.at(0)).depth.width, 640);
+  const RgbdImage first = LoadPullFrame(*capture.pull, 0);
+  ASSERT_EQ(first.depth.width, 1280);
+  ASSERT_EQ(first.color.width, 1280);
+
+  const Tree tree = ReadTreeJson(dir / "gt" / "tree.json");
+  const Trajectories tracks = ReadTrajectoriesCsv(dir / "gt" / "trajectories.csv");
+  const Eigen::Isometry3d camera = ReadPullCamera(dir / "gt" / "pull_camera.json");
+  const std::vector<MarkerFrame2d> boxes = ReadMarkers2d(dir / "gt" / "markers_2d.json");
+  const TrackInit init = ReadTrackInitJson(dir / "pull" / "init.json");
+  ASSERT_EQ(init.markers.size(), tree.markers.size());
+  int agree = 0;
+  for (size_t m = 0; m < tree.markers.size(); ++m) {
+    const Eigen::Vector3d centre = tracks.tracks[m].positions[0];
+    EXPECT_LT((centre - camera.inverse() * tree.markers[m].position).norm(), 1e-4);
+    const MarkerBox2d& b = boxes[0].markers[m];
+    ASSERT_TRUE(b.visible) << "marker " << b.id;
+    const Eigen::Vector2d uv = k.Project(centre);
+    EXPECT_GE(uv.x(), b.box[0] - 1.0);
+    EXPECT_LE(uv.x(), b.box[0] + b.box[2] + 1.0);
+    EXPECT_GE(uv.y(), b.box[1] - 1.0);
+    EXPECT_LE(uv.y(), b.box[1] + b.box[3] + 1.0);
+    EXPECT_LT((init.markers[m].pixel - uv).norm(), 8.0) << "marker " << b.id;
+    // The registered depth on the tape is the marker's depth in this camera (its surface, a
+    // branch radius nearer, plus the sensor's noise).
+    double nearest = 1e9;
+    for (int y = std::max(0, static_cast<int>(uv.y()) - 2); y <= static_cast<int>(uv.y()) + 2;
+         ++y) {
+      for (int x = std::max(0, static_cast<int>(uv.x()) - 2); x <= static_cast<int>(uv.x()) + 2;
+           ++x) {
+        if (x >= k.width || y >= k.height || first.depth.at(x, y) == 0) continue;
+        nearest = std::min(nearest, std::abs(0.001 * first.depth.at(x, y) - centre.z()));
+      }
+    }
+    agree += nearest < 0.05;
+  }
+  EXPECT_GE(agree, static_cast<int>(tree.markers.size()) * 3 / 4);
 }
 
 TEST(SynthCli, HelpTeachesAndListsSpecies) {

@@ -29,6 +29,7 @@
 #include "simtree/synth/detail/init_clicks.h"
 #include "simtree/synth/detail/leaf_occluders.h"
 #include "simtree/synth/detail/marker_placement.h"
+#include "simtree/synth/detail/pull_rig.h"
 #include "simtree/synth/detail/rgbd_renderer.h"
 #include "simtree/synth/detail/sensor_model.h"
 #include "simtree/synth/detail/sensor_scene.h"
@@ -99,6 +100,7 @@ void CheckOptions(const SynthOptions& o) {
   if (!(o.min_force_n > 0 && o.max_force_n >= o.min_force_n && std::isfinite(o.max_force_n))) {
     fail("max_force_n", "expected 0 < min_force_n <= max_force_n");
   }
+  if (o.HasColorCamera()) AzureColorCamera::ForSize(o.color_width, o.color_height, "color_size");
 }
 
 // The pull test a person would set up: a rope round a first-level branch that carries taped
@@ -342,19 +344,22 @@ struct PullFrameRender {
 // One frame of the pull stream with its marker boxes; with leaves, they are planned on the first
 // frame rendered (into `leaves`) and painted in before the boxes are computed, so `visible`
 // follows them.
-RenderResult RenderPullFrame(const SensorScene& scene, const SensorModel& sensor,
-                             const Eigen::Isometry3d& camera, const PullFrameRender& frame,
-                             std::vector<LeafOccluder>& leaves) {
+RenderResult RenderPullFrame(const SensorScene& scene, const PullRig& rig,
+                             const PullFrameRender& frame, std::vector<LeafOccluder>& leaves) {
   RenderOptions render;
   render.seed = frame.seed;
   render.frame = frame.frame;
   render.marker_boxes = !frame.leaves;
-  RenderResult result = RenderRgbd(scene, sensor, camera, render);
+  RenderResult result = RenderPullRig(scene, rig, render);
   if (!frame.leaves) return result;
-  const CameraIntrinsics k = sensor.Intrinsics();
+  const CameraIntrinsics k = rig.Intrinsics();
+  const Eigen::Isometry3d camera = rig.WorldFromImage();
   if (frame.frame == 0) {
     const std::vector<MarkerObservation> rest = ComputeMarkerBoxes(scene, k, camera, result.labels);
-    leaves = PlanLeafOccluders(ToMarkerFrame(0, frame.time_s, rest), {.seed = frame.leaf_seed});
+    // Leaves of the same angular size at any colour size (their sizes are for 640 x 576).
+    const double pixel_scale = k.fx / rig.depth_sensor.FocalLengthPx();
+    leaves = PlanLeafOccluders(ToMarkerFrame(0, frame.time_s, rest),
+                               {.seed = frame.leaf_seed, .pixel_scale = pixel_scale});
   }
   DrawLeafOccluders(leaves, frame.time_s, result.image.color, result.image.depth, result.labels);
   result.markers = ComputeMarkerBoxes(scene, k, camera, result.labels);
@@ -390,8 +395,7 @@ TreePose Lerp(const TreePose& a, const TreePose& b, double w) {
 // Motion blur over an exposure of half a frame centred on the frame's time: the colour at its two
 // ends (the pose a quarter of the way to the previous and to the next frame, the leaves where they
 // are then), to be averaged with the frame's own. Leaves the scene in the last end's pose.
-std::vector<RgbImage> RenderExposureEnds(SensorScene& scene, const SensorModel& sensor,
-                                         const Eigen::Isometry3d& camera,
+std::vector<RgbImage> RenderExposureEnds(SensorScene& scene, const PullRig& rig,
                                          const std::vector<TreePose>& poses,
                                          const PullFrameRender& frame, double frame_interval_s,
                                          const std::vector<LeafOccluder>& leaves) {
@@ -402,7 +406,9 @@ std::vector<RgbImage> RenderExposureEnds(SensorScene& scene, const SensorModel& 
     render.seed = frame.seed;
     render.frame = frame.frame;
     render.marker_boxes = false;
-    RenderResult r = RenderRgbd(scene, sensor, camera, render);
+    // The colour camera's colour only; registered to depth, the same render as ever.
+    render.measure_depth = !rig.color;
+    RenderResult r = RenderPullRig(scene, rig, render);
     DrawLeafOccluders(leaves, frame.time_s + 0.25 * side * frame_interval_s, r.image.color,
                       r.image.depth, r.labels);
     ends.push_back(std::move(r.image.color));
@@ -494,10 +500,18 @@ CaptureInfo DescribeCapture(const SynthOptions& options, const std::string& spec
   CaptureInfo info;
   info.sensor = options.hard ? "synthetic azure_kinect_nfov_unbinned (hard)"
                              : "synthetic azure_kinect_nfov_unbinned";
+  const std::string color_size =
+      options.HasColorCamera()
+          ? fmt::format(" --color-size {}x{}", options.color_width, options.color_height)
+          : "";
+  if (options.HasColorCamera()) {
+    info.sensor += fmt::format(", pull stream colour {}x{} with depth registered to it",
+                               options.color_width, options.color_height);
+  }
   info.species = species;
-  info.notes = fmt::format("simtree synth --species {} --seed {}{}{}{}", species, options.seed,
+  info.notes = fmt::format("simtree synth --species {} --seed {}{}{}{}{}", species, options.seed,
                            options.quick ? " --quick" : "", options.hard ? " --hard" : "",
-                           options.clean_color ? " --clean-color" : "");
+                           options.clean_color ? " --clean-color" : "", color_size);
   return info;
 }
 
@@ -505,33 +519,38 @@ CaptureInfo DescribeCapture(const SynthOptions& options, const std::string& spec
 void WriteSynthSummary(const SynthOptions& options, SynthReport& report, Clock::time_point start,
                        const fs::path& path) {
   report.total_s = SecondsSince(start);
-  const nlohmann::ordered_json summary = {{"format", "simtree.synth_report"},
-                                          {"version", 1},
-                                          {"species", report.species},
-                                          {"seed", report.seed},
-                                          {"quick", options.quick},
-                                          {"hard", options.hard},
-                                          {"clean_color", options.clean_color},
-                                          {"branches", report.branches},
-                                          {"nodes", report.nodes},
-                                          {"levels", report.levels},
-                                          {"height_m", report.height_m},
-                                          {"markers", report.markers},
-                                          {"fem_dof", report.fem_dof},
-                                          {"fem_modes", report.fem_modes},
-                                          {"first_frequency_hz", report.first_frequency_hz},
-                                          {"pull_force_n", report.pull_force_n},
-                                          {"pull_deflection_m", report.pull_deflection_m},
-                                          {"pull_max_rotation_rad", report.pull_max_rotation_rad},
-                                          {"views", report.views},
-                                          {"frames", report.frames},
-                                          {"tree_pixels_per_view", report.tree_pixels_per_view},
-                                          {"seconds",
-                                           {{"tree", report.tree_s},
-                                            {"fem", report.fem_s},
-                                            {"scans", report.scans_s},
-                                            {"pull", report.pull_s},
-                                            {"total", report.total_s}}}};
+  const nlohmann::ordered_json summary = {
+      {"format", "simtree.synth_report"},
+      {"version", 1},
+      {"species", report.species},
+      {"seed", report.seed},
+      {"quick", options.quick},
+      {"hard", options.hard},
+      {"clean_color", options.clean_color},
+      {"pull_color_size",
+       options.HasColorCamera()
+           ? nlohmann::ordered_json::array({options.color_width, options.color_height})
+           : nlohmann::ordered_json(nullptr)},
+      {"branches", report.branches},
+      {"nodes", report.nodes},
+      {"levels", report.levels},
+      {"height_m", report.height_m},
+      {"markers", report.markers},
+      {"fem_dof", report.fem_dof},
+      {"fem_modes", report.fem_modes},
+      {"first_frequency_hz", report.first_frequency_hz},
+      {"pull_force_n", report.pull_force_n},
+      {"pull_deflection_m", report.pull_deflection_m},
+      {"pull_max_rotation_rad", report.pull_max_rotation_rad},
+      {"views", report.views},
+      {"frames", report.frames},
+      {"tree_pixels_per_view", report.tree_pixels_per_view},
+      {"seconds",
+       {{"tree", report.tree_s},
+        {"fem", report.fem_s},
+        {"scans", report.scans_s},
+        {"pull", report.pull_s},
+        {"total", report.total_s}}}};
   WriteFileAtomically(path, summary.dump(1) + "\n");
 }
 
@@ -579,8 +598,8 @@ struct PullStreamOutput {
 // of a frame overlap the next frame's rendering. Frees each of `frame_poses` once rendered; adds
 // the contact sheet's pull frames to `tiles`.
 PullStreamOutput RenderPullStream(const SynthOptions& options, const Tree& tree, SensorScene& scene,
-                                  const SensorModel& sensor, const Eigen::Isometry3d& pull_camera,
-                                  const PullLoad& pull, const std::vector<double>& frame_times,
+                                  const PullRig& rig, const PullLoad& pull,
+                                  const std::vector<double>& frame_times,
                                   std::vector<TreePose>& frame_poses, const fs::path& pull_dir,
                                   std::vector<ContactSheetTile>& tiles) {
   const int frame_count = static_cast<int>(frame_times.size());
@@ -590,7 +609,7 @@ PullStreamOutput RenderPullStream(const SynthOptions& options, const Tree& tree,
   out.boxes.resize(frame_count);
   Trajectories& trajectories = out.trajectories;
   for (const Marker& m : tree.markers) trajectories.tracks.push_back(MarkerTrack{m.id, {}, {}});
-  const Eigen::Isometry3d camera_from_world = pull_camera.inverse();
+  const Eigen::Isometry3d camera_from_world = rig.WorldFromImage().inverse();
   const int release_frame =
       std::min(frame_count - 1, static_cast<int>(std::ceil(pull.release_s * options.fps)));
   const std::vector<int> sheet_frames = {0, release_frame - 1,
@@ -607,7 +626,7 @@ PullStreamOutput RenderPullStream(const SynthOptions& options, const Tree& tree,
     oneapi::tbb::task_group writers;
     std::vector<LeafOccluder> leaves;  // --hard: planned on the first frame
     const std::vector<bool> blurred =
-        options.hard ? FastFrames(tree, frame_poses, camera_from_world, sensor.Intrinsics())
+        options.hard ? FastFrames(tree, frame_poses, camera_from_world, rig.Intrinsics())
                      : std::vector<bool>(frame_count, false);
     if (options.hard) {
       spdlog::info("synth: {} of {} pull frames with motion blur (a marker moves > 5 px a frame)",
@@ -626,12 +645,10 @@ PullStreamOutput RenderPullStream(const SynthOptions& options, const Tree& tree,
                                    .leaf_seed = SeedFor(options.seed, Stream::kLeaves)};
       std::vector<RgbImage> streak;  // --hard, at the swing's fastest: the exposure's ends
       if (blurred[i]) {
-        streak = RenderExposureEnds(scene, sensor, pull_camera, frame_poses, render,
-                                    1.0 / options.fps, leaves);
+        streak = RenderExposureEnds(scene, rig, frame_poses, render, 1.0 / options.fps, leaves);
       }
       scene.SetPose(frame_poses[i]);
-      auto result = std::make_shared<RenderResult>(
-          RenderPullFrame(scene, sensor, pull_camera, render, leaves));
+      auto result = std::make_shared<RenderResult>(RenderPullFrame(scene, rig, render, leaves));
       if (!streak.empty()) AverageColor(streak, result->image.color);
       if (!options.clean_color) color_camera.Apply(frame_times[i], i, result->image.color);
       // Ground truth: the marker centres on the deformed branch axis, camera frame.
@@ -688,12 +705,24 @@ SynthReport RunSynth(const SynthOptions& options, const fs::path& out) {
       ChoosePull(tree, MarkerPlacementOptions{}.min_radius_m, options.pull_position);
   const Eigen::Isometry3d pull_camera = PullCameraPose(tree, pull_setup.outward);
   const SensorModel sensor = options.hard ? SensorModel::Hard() : SensorModel::AzureKinectNfov();
+  // The tripod. With a colour camera of its own, the person frames the tree on the colour
+  // preview: the colour camera takes PullCameraPose's aim and the depth camera sits beside it
+  // (4.9 degrees lower); the stream's images and ground truth are in the colour camera's frame.
+  PullRig rig{.world_from_depth = pull_camera, .depth_sensor = sensor, .color = std::nullopt};
+  if (options.HasColorCamera()) {
+    rig.color = AzureColorCamera::ForSize(options.color_width, options.color_height);
+    rig.world_from_depth = pull_camera * rig.color->color_from_depth;
+  }
   MarkerPlacementOptions placement =
       TapePlacement(options, pull_setup, pull_camera, sensor.FocalLengthPx());
   SceneOptions scene_options =
       DefaultSceneOptions(tree, SeedFor(options.seed, Stream::kScene), options.hard);
-  if (options.hard) scene_options.boxes.push_back(RedDistractor(pull_camera, sensor.Intrinsics()));
-  PlaceVisibleMarkers(tree, placement, sensor, pull_camera, scene_options,
+  if (options.hard) {
+    scene_options.boxes.push_back(RedDistractor(rig.WorldFromImage(), rig.Intrinsics()));
+  }
+  // Tapes the stream's camera sees at rest (the colour camera's view is 59 degrees high, and 32 mm
+  // of parallax changes what hides a band at the edge of visibility).
+  PlaceVisibleMarkers(tree, placement, rig.ImageSensor(), rig.WorldFromImage(), scene_options,
                       SeedFor(options.seed, Stream::kPullNoise));
   tree.metadata.source = fmt::format("synth {} seed {}", species.name, options.seed);
   ReportTree(tree, report);
@@ -745,7 +774,7 @@ SynthReport RunSynth(const SynthOptions& options, const fs::path& out) {
   }
 
   // ---- 3. The sensor and the scene.
-  const CameraIntrinsics intrinsics = sensor.Intrinsics();
+  const CameraIntrinsics intrinsics = rig.Intrinsics();
   SensorScene scene(tree, scene_options);
 
   AtomicDirectory folder(out);
@@ -765,8 +794,8 @@ SynthReport RunSynth(const SynthOptions& options, const fs::path& out) {
   const Clock::time_point pull_start = Clock::now();
   const fs::path pull_dir = root / "pull";
   WriteIntrinsicsJson(intrinsics, pull_dir / "intrinsics.json");
-  const PullStreamOutput stream = RenderPullStream(options, tree, scene, sensor, pull_camera, pull,
-                                                   frame_times, frame_poses, pull_dir, tiles);
+  const PullStreamOutput stream =
+      RenderPullStream(options, tree, scene, rig, pull, frame_times, frame_poses, pull_dir, tiles);
   const std::vector<MarkerFrame2d>& boxes = stream.boxes;
   const Trajectories& trajectories = stream.trajectories;
   WriteFramesCsv(stream.frames, pull_dir / "frames.csv");
@@ -778,7 +807,7 @@ SynthReport RunSynth(const SynthOptions& options, const fs::path& out) {
   const fs::path gt = root / "gt";
   WriteTreeJson(tree, gt / "tree.json");
   WriteScanPoses(gt_views, gt / "scan_poses.json");
-  WritePullCamera(pull_camera, gt / "pull_camera.json");
+  WritePullCamera(rig.WorldFromImage(), gt / "pull_camera.json");
   WritePullLoad(pull, gt / "pull_load.json");
   WriteTrajectoriesCsv(trajectories, gt / "trajectories.csv");
   WriteMarkers2d(boxes, gt / "markers_2d.json");

@@ -40,6 +40,14 @@ struct SynthOptions {
   // The pull stream's colour as the renderer makes it, without the camera's pipeline (white
   // balance, auto-exposure drift, sensor noise, defocus, MJPEG; detail/camera_color.h).
   bool clean_color = false;
+  // The pull stream's colour camera (`--color-size WxH`): 0 x 0 (default), colour registered to
+  // the depth camera's 640 x 576 pixels; an Azure Kinect colour size (1280 x 720, ...), the
+  // colour camera of its own beside the depth camera with the depth registered into it, as real
+  // recordings are usually processed: the stream's intrinsics, images and ground truth are then
+  // the colour camera's (detail/pull_rig.h). The static scans stay registered to depth.
+  int color_width = 0;
+  int color_height = 0;
+  bool HasColorCamera() const { return color_width != 0 || color_height != 0; }
   int views = 0;            // 0: 10 (hard: 7, quick: 4)
   double duration_s = 0.0;  // pull stream length; 0: 15 s (quick: 5 s)
   double fps = 30.0;

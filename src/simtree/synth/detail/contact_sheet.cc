@@ -51,14 +51,20 @@ RgbImage MakeContactSheet(const std::vector<ContactSheetTile>& tiles,
   for (size_t i = 0; i < tiles.size(); ++i) {
     const int x0 = kGap + static_cast<int>(i % columns) * (cell_w + kGap);
     const int y0 = kGap + static_cast<int>(i / columns) * (cell_h + kGap);
-    const cv::Size size(tile_w, tile_h);
+    // Each image fitted into the tile, its shape kept (the pull stream's colour camera may differ
+    // from the scans' shape).
+    const double fit = std::min(static_cast<double>(tile_w) / tiles[i].color.width,
+                                static_cast<double>(tile_h) / tiles[i].color.height);
+    const cv::Size size(
+        std::min(tile_w, static_cast<int>(std::lround(tiles[i].color.width * fit))),
+        std::min(tile_h, static_cast<int>(std::lround(tiles[i].color.height * fit))));
     cv::Mat color, depth;
     cv::resize(ToMat(tiles[i].color), color, size, 0, 0, cv::INTER_AREA);
     // Nearest neighbour keeps "no measurement" black instead of smearing it into its neighbours.
     cv::resize(ToMat(ColorizeDepth(tiles[i].depth, options.depth)), depth, size, 0, 0,
                cv::INTER_NEAREST);
-    color.copyTo(sheet(cv::Rect(x0, y0 + kLabelHeight, tile_w, tile_h)));
-    depth.copyTo(sheet(cv::Rect(x0 + tile_w + kGap, y0 + kLabelHeight, tile_w, tile_h)));
+    color.copyTo(sheet(cv::Rect(x0, y0 + kLabelHeight, size.width, size.height)));
+    depth.copyTo(sheet(cv::Rect(x0 + tile_w + kGap, y0 + kLabelHeight, size.width, size.height)));
     cv::putText(sheet, tiles[i].label, cv::Point(x0 + 2, y0 + kLabelHeight - 6),
                 cv::FONT_HERSHEY_SIMPLEX, 0.5, cv::Scalar(235, 235, 235), 1, cv::LINE_AA);
   }

@@ -20,6 +20,10 @@ void LeafOccluderOptions::Validate() const {
   if (count < 0 || count > 50) {
     throw InputError("leaf occluder options", "count", fmt::format("expected 0-50, got {}", count));
   }
+  if (!(pixel_scale > 0.1 && pixel_scale < 10.0)) {
+    throw InputError("leaf occluder options", "pixel_scale",
+                     fmt::format("expected (0.1, 10), got {}", pixel_scale));
+  }
 }
 
 std::vector<LeafOccluder> PlanLeafOccluders(const MarkerFrame2d& first_frame,
@@ -38,7 +42,7 @@ std::vector<LeafOccluder> PlanLeafOccluders(const MarkerFrame2d& first_frame,
     LeafOccluder leaf;
     const double angle = std::numbers::pi * random.Uniform();
     leaf.direction = Eigen::Vector2d(std::cos(angle), std::sin(angle));
-    leaf.amplitude_px = 20.0 + 20.0 * random.Uniform();
+    leaf.amplitude_px = options.pixel_scale * (20.0 + 20.0 * random.Uniform());
     // The swing's middle off the marker, so the leaf covers it twice a period, on its way to
     // one end of the swing and back; at the first frame it is at the other end, clear of the
     // tape (a person clicks the markers they see).
@@ -46,7 +50,7 @@ std::vector<LeafOccluder> PlanLeafOccluders(const MarkerFrame2d& first_frame,
                   (0.3 + 0.3 * random.Uniform()) * leaf.amplitude_px * leaf.direction;
     leaf.period_s = 1.5 + 2.0 * random.Uniform();
     leaf.phase_rad = 0.5 * std::numbers::pi;
-    leaf.half_length_px = 9.0 + 5.0 * random.Uniform();
+    leaf.half_length_px = options.pixel_scale * (9.0 + 5.0 * random.Uniform());
     leaf.half_width_px = 0.5 * leaf.half_length_px;
     leaf.depth_m = 0.8 + 0.4 * random.Uniform();
     const float shade = static_cast<float>(0.7 + 0.6 * random.Uniform());

@@ -39,6 +39,9 @@ struct LeafOccluder {
 struct LeafOccluderOptions {
   int count = 3;  // leaves, each over another marker where there are enough
   uint64_t seed = 0;
+  // Image pixels per pixel of the 640 x 576 image the leaves' sizes and swings are given for
+  // (a colour camera's focal length over the depth camera's), so they span the same angles.
+  double pixel_scale = 1.0;
   void Validate() const;  // throws InputError naming the field
 };
 

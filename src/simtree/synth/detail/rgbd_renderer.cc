@@ -148,10 +148,15 @@ RenderResult RenderRgbd(const SensorScene& scene, const SensorModel& sensor,
     }
   });
 
-  result.measurement = MeasureDepth(sensor, truth, {.seed = options.seed, .frame = options.frame});
-  result.image.depth = std::move(result.measurement.depth);
-  result.measurement.depth = DepthImage();
-  if (sensor.blank_color_without_depth) {
+  if (!options.measure_depth) {
+    result.image.depth = DepthImage(k.width, k.height);
+  } else {
+    result.measurement =
+        MeasureDepth(sensor, truth, {.seed = options.seed, .frame = options.frame});
+    result.image.depth = std::move(result.measurement.depth);
+    result.measurement.depth = DepthImage();
+  }
+  if (sensor.blank_color_without_depth && options.measure_depth) {
     for (size_t i = 0; i < result.image.depth.pixels.size(); ++i) {
       if (result.image.depth.pixels[i] == 0) {
         for (int c = 0; c < 3; ++c) result.image.color.pixels[3 * i + c] = 0;

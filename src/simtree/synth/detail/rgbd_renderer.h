@@ -34,6 +34,8 @@ struct RenderOptions {
   bool shadows = true;
   // Compute RenderResult::markers (boxes and visibility of the tape bands).
   bool marker_boxes = true;
+  // Measure depth (sensor_measurement.h); off: image.depth is all zero (a colour-only render).
+  bool measure_depth = true;
   MarkerBoxOptions marker_box_options = {};
 };
 
