@@ -132,6 +132,41 @@ TEST(Cli, ShortParameterFileNamesTheLine) {
   EXPECT_FALSE(std::filesystem::exists(dir / "out.json"));
 }
 
+TEST(Cli, AStaticTreeWithoutAPullTestBuildsWithAssumedMaterialsAndSimulates) {
+  const auto dir = test::TempDir();
+  const std::string tree = (dir / "static.json").string(), ready = (dir / "ready.json").string();
+  // tree02 ships without a parameter file: a static tree, as a scan alone gives.
+  auto r = test::RunCli("-q convert " + Demo("tree_model/tree02.txt") + " " + tree);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = test::RunCli("simulate " + tree + " --duration 0.1 --out " + (dir / "sim").string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_THAT(r.output, HasSubstr("simtree build --species"));
+  r = test::RunCli("build " + tree + " --out " + ready);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_THAT(r.output, HasSubstr("--materials: expected materials.json"));
+  r = test::RunCli("build " + tree + " --species magnolia --out " + ready);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("no pull test"));
+  r = test::RunCli("info " + ready);
+  EXPECT_THAT(r.output, HasSubstr("0 measured, 0 interpolated, 0 default, "));
+  EXPECT_THAT(r.output, HasSubstr("assumed values are typical of the kind of tree"));
+  EXPECT_THAT(r.output, HasSubstr("frequency       0.955 - 0.955 Hz"));
+  EXPECT_THAT(test::ReadText(ready), HasSubstr("\"assumed\""));
+  r = test::RunCli("simulate " + ready + " --duration 0.1 --out " + (dir / "sim").string());
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  // Bad values name the option and write nothing.
+  for (const char* bad : {"1.2", "1.2,x", "0,0.03", "1.2,1.5"}) {
+    const std::string out = (dir / "bad.json").string();
+    r = test::RunCli("build " + tree + " --default-material " + bad + " --out " + out);
+    EXPECT_NE(r.exit_code, 0) << bad;
+    EXPECT_THAT(r.output, HasSubstr("--default-material")) << bad;
+    EXPECT_FALSE(std::filesystem::exists(out)) << bad;
+  }
+  r = test::RunCli("build " + tree + " --species oak --out " + (dir / "oak.json").string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_THAT(r.output, HasSubstr("known species are acer_palmatum"));
+}
+
 TEST(Cli, NeverWritesOverItsInput) {
   const auto dir = test::TempDir();
   const auto json = dir / "t.json";

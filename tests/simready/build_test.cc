@@ -5,10 +5,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "identification/tree_fixture.h"
 #include "simtree/core/error.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/core/units.h"
 #include "simtree/core/validate.h"
-#include "identification/tree_fixture.h"
 
 namespace simtree::simready {
 namespace {
@@ -161,6 +162,56 @@ TEST(SimulationReady, DepthFirstRenumberingKeepsTheHierarchy) {
     EXPECT_EQ(renumbered.branches[new_id[old]].nodes.front().position,
               tree.branches[old].nodes.front().position);
   }
+}
+
+TEST(SimulationReady, ATreeWithoutAPullTestGetsItsSpeciesTypicalValuesMarkedAssumed) {
+  const Tree tree = test::IdentificationTree();
+  BuildReport report;
+  const Tree ready =
+      BuildAssumedSimulationReadyTree(tree, AssumedMaterialOf("Magnolia"), {}, &report);
+  EXPECT_TRUE(FindProblems(ready, {.require_materials = true}).empty());
+  EXPECT_EQ(report.assumed, tree.size());
+  EXPECT_EQ(report.measured, 0);
+  // Magnolia in Table IV: 0.72-1.19 Hz, damping 0.023-0.033; the middle on every mode.
+  for (const Branch& b : ready.branches) {
+    const Material& m = *b.material;
+    EXPECT_EQ(m.source, MaterialSource::kAssumed);
+    for (const Mode& mode : m.modes) {
+      EXPECT_DOUBLE_EQ(mode.frequency_hz, 0.955);
+      EXPECT_DOUBLE_EQ(mode.damping_ratio, 0.028);
+    }
+    // Masses from the wood as for a measured tree; k follows f and the mass (paper Eq. 6).
+    EXPECT_GT(m.mass_kg, 0.0);
+    EXPECT_NEAR(m.stiffness, ModalStiffness(m.mass_kg, 0.955), 1e-9 * m.stiffness);
+  }
+  EXPECT_NEAR(report.total_mass_kg, SubtreeMasses(tree, BuildOptions{}.wood_density_kg_m3)[0],
+              1e-9);
+}
+
+TEST(SimulationReady, AssumedValuesAreCheckedAndUnknownSpeciesListTheKnownOnes) {
+  const Tree tree = test::IdentificationTree();
+  EXPECT_THAT([] { AssumedMaterialOf("oak"); },
+              ::testing::ThrowsMessage<InputError>(
+                  HasSubstr("known species are acer_palmatum, magnolia, acer_rubrum")));
+  EXPECT_DOUBLE_EQ(AssumedMaterialOf("acer-rubrum").frequency_hz, 0.5 * (0.93 + 1.50));
+  auto error = [&](AssumedMaterial assumed) {
+    try {
+      BuildAssumedSimulationReadyTree(tree, assumed);
+    } catch (const OptionError& e) {
+      return e.field();
+    }
+    return std::string("none");
+  };
+  EXPECT_EQ(error({1.2, 0.03, "ok"}), "none");
+  EXPECT_EQ(error({0.0, 0.03, ""}), "assumed.frequency_hz");
+  EXPECT_EQ(error({std::nan(""), 0.03, ""}), "assumed.frequency_hz");
+  EXPECT_EQ(error({1.2, 0.0, ""}), "assumed.damping_ratio");
+  EXPECT_EQ(error({1.2, 1.5, ""}), "assumed.damping_ratio");
+  EXPECT_THAT(
+      [] {
+        BuildAssumedSimulationReadyTree(Tree{}, {1.2, 0.03, ""});
+      },
+      ::testing::ThrowsMessage<InputError>(HasSubstr("no branches")));
 }
 
 }  // namespace

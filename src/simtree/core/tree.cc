@@ -146,6 +146,8 @@ const char* ToString(MaterialSource source) {
       return "interpolated";
     case MaterialSource::kDefault:
       return "default";
+    case MaterialSource::kAssumed:
+      return "assumed";
   }
   return "?";
 }

@@ -39,8 +39,9 @@ struct Mode {
 };
 
 // Where a material value came from: measured on this branch, interpolated from measured branches,
-// or a default (imported or assumed).
-enum class MaterialSource { kMeasured, kInterpolated, kDefault };
+// a default (imported from a parameter file, or the viewer's demo values), or assumed for a tree
+// without a pull test (typical values of its kind of tree, `simtree build --species`).
+enum class MaterialSource { kMeasured, kInterpolated, kDefault, kAssumed };
 
 // Modal material of one branch. `mass_kg` is the modal mass m of paper Eq. 6 (modes normalised to
 // a unit tip deflection), so a static tip force F bends the branch by F / k with

@@ -89,13 +89,14 @@ ModeKind ParseModeKind(const std::string& name, const std::string& source, const
 
 MaterialSource ParseMaterialSource(const std::string& name, const std::string& source,
                                    const std::string& at) {
-  for (MaterialSource s :
-       {MaterialSource::kMeasured, MaterialSource::kInterpolated, MaterialSource::kDefault}) {
+  for (MaterialSource s : {MaterialSource::kMeasured, MaterialSource::kInterpolated,
+                           MaterialSource::kDefault, MaterialSource::kAssumed}) {
     if (name == ToString(s)) return s;
   }
-  throw InputError(
-      source, at,
-      fmt::format("expected \"measured\", \"interpolated\" or \"default\", got \"{}\"", name));
+  throw InputError(source, at,
+                   fmt::format("expected \"measured\", \"interpolated\", \"default\" or "
+                               "\"assumed\", got \"{}\"",
+                               name));
 }
 
 Tree TreeFromJson(const nlohmann::json& value, const std::string& source,

@@ -31,6 +31,9 @@ TreeSummary Summarize(const Tree& tree) {
       case MaterialSource::kDefault:
         ++s.defaulted;
         break;
+      case MaterialSource::kAssumed:
+        ++s.assumed;
+        break;
     }
     for (const Mode& m : b.material->modes) {
       fmin = std::min(fmin, m.frequency_hz);
@@ -51,6 +54,13 @@ TreeSummary Summarize(const Tree& tree) {
   return s;
 }
 
+std::string FormatMaterialSources(const TreeSummary& s) {
+  std::string out = fmt::format("{} measured, {} interpolated, {} default", s.measured,
+                                s.interpolated, s.defaulted);
+  if (s.assumed > 0) out += fmt::format(", {} assumed", s.assumed);
+  return out;
+}
+
 std::string FormatSummary(const TreeSummary& s) {
   std::string levels;
   for (size_t l = 0; l < s.branches_per_level.size(); ++l) {
@@ -67,11 +77,16 @@ std::string FormatSummary(const TreeSummary& s) {
       100.0 * s.trunk_base_radius_m, s.total_length_m);
   if (s.with_material > 0) {
     out += fmt::format(
-        "\nmaterials       {} of {} branches ({} measured, {} interpolated, {} default)\n"
+        "\nmaterials       {} of {} branches ({})\n"
         "frequency       {:.3g} - {:.3g} Hz\n"
         "damping ratio   {:.3g} - {:.3g}",
-        s.with_material, s.branches, s.measured, s.interpolated, s.defaulted, s.min_frequency_hz,
+        s.with_material, s.branches, FormatMaterialSources(s), s.min_frequency_hz,
         s.max_frequency_hz, s.min_damping, s.max_damping);
+    if (s.assumed > 0) {
+      out +=
+          "\n                assumed values are typical of the kind of tree, not measured: "
+          "a pull test (`simtree identify`) measures them";
+    }
   } else {
     out += "\nmaterials       none (a static tree; `simtree build` adds them)";
   }

@@ -98,8 +98,10 @@ void ValidateForSimulation(const Tree& tree, const std::string& source) {
     const std::string at = fmt::format("branches[{}].material", b.id);
     if (!b.material) {
       throw InputError(source, at,
-                       "expected a material (frequency, damping, stiffness) on every branch: give "
-                       "the tree materials (simtree build) or a parameter file (--material-file)");
+                       "expected a material (frequency, damping, stiffness) on every branch: "
+                       "measure them with a pull test (simtree identify, then simtree build "
+                       "--materials), assume typical ones without one (simtree build --species "
+                       "NAME), or give a parameter file (--material-file)");
     }
     CheckMaterialForSimulation(*b.material, source, at);
   }

@@ -90,6 +90,21 @@ void BuildOptions::Validate() const {
   CheckNested("interpolation", interpolation);
 }
 
+void AssumedMaterial::Validate() const {
+  CheckInRange("frequency_hz", frequency_hz, 0.01, 100.0);
+  CheckThat(damping_ratio > 0 && damping_ratio < 1, "damping_ratio", "a value in (0, 1)",
+            damping_ratio);
+}
+
+AssumedMaterial AssumedMaterialOf(const std::string& species) {
+  const TypicalMaterial& row = FindTypicalMaterial(species);
+  return {row.frequency_hz(), row.damping_ratio(),
+          fmt::format("{}, the middle of the paper's Table IV ranges ({:.2f}-{:.2f} Hz, damping "
+                      "{:.3f}-{:.3f})",
+                      row.species, row.min_frequency_hz, row.max_frequency_hz,
+                      row.min_damping_ratio, row.max_damping_ratio)};
+}
+
 namespace {
 
 // The materials with every measured link's branch found: its own branch id, or the static
@@ -204,29 +219,56 @@ double AssignMassAndStiffness(const BuildOptions& options, Tree& tree) {
   return total_mass_kg;
 }
 
+// The static tree with levels and frames, ready for materials; throws for an empty tree.
+Tree PrepareStaticTree(const Tree& static_tree) {
+  if (static_tree.empty()) throw InputError("tree", "", "the static tree has no branches");
+  Tree tree = static_tree;
+  AssignLevels(tree);
+  ComputeFrames(tree);
+  return tree;
+}
+
+// The finished tree: renumbered if asked, validated as simulation-ready.
+Tree FinishSimulationReadyTree(Tree tree, const BuildOptions& options) {
+  if (options.renumber_depth_first) tree = RenumberDepthFirst(tree);
+  ValidationOptions validation;
+  validation.require_materials = true;
+  Validate(tree, "simulation-ready tree", validation);
+  return tree;
+}
+
 }  // namespace
 
 Tree BuildSimulationReadyTree(const Tree& static_tree,
                               const identification::MaterialsFile& materials,
                               const BuildOptions& options, BuildReport* report_out) {
   options.Validate();
-  if (static_tree.empty()) throw InputError("tree", "", "the static tree has no branches");
   BuildReport report;
-  Tree tree = static_tree;
-  AssignLevels(tree);
-  ComputeFrames(tree);
+  Tree tree = PrepareStaticTree(static_tree);
   // Measured branches first: the interpolation of the others is fitted on them.
   const Measured measured = ApplyMeasuredMaterials(MaterialsOnTree(tree, materials), tree);
   report.measured = static_cast<int>(measured.samples.size());
   report.interpolation = FitInterpolationModel(tree, measured.samples, options.interpolation);
   report.interpolated = InterpolateUnmeasured(measured, report.interpolation, tree);
   report.total_mass_kg = AssignMassAndStiffness(options, tree);
-  if (options.renumber_depth_first) tree = RenumberDepthFirst(tree);
-  ValidationOptions validation;
-  validation.require_materials = true;
-  Validate(tree, "simulation-ready tree", validation);
   if (report_out) *report_out = std::move(report);
-  return tree;
+  return FinishSimulationReadyTree(std::move(tree), options);
+}
+
+Tree BuildAssumedSimulationReadyTree(const Tree& static_tree, const AssumedMaterial& assumed,
+                                     const BuildOptions& options, BuildReport* report_out) {
+  options.Validate();
+  CheckNested("assumed", assumed);
+  BuildReport report;
+  Tree tree = PrepareStaticTree(static_tree);
+  for (Branch& b : tree.branches) {
+    b.material = Material::FromFrequencyDampingStiffness(
+        assumed.frequency_hz, assumed.damping_ratio, 0.0, MaterialSource::kAssumed);
+  }
+  report.assumed = tree.size();
+  report.total_mass_kg = AssignMassAndStiffness(options, tree);
+  if (report_out) *report_out = std::move(report);
+  return FinishSimulationReadyTree(std::move(tree), options);
 }
 
 }  // namespace simtree::simready

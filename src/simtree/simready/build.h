@@ -4,6 +4,9 @@
 //
 //  - Measured branches take their modes from materials.json; the others are interpolated
 //    (interpolation.h) and marked so; nothing is measured at all -> an error, not a default.
+//  - A tree without a pull test (BuildAssumedSimulationReadyTree): every branch gets one assumed
+//    frequency and damping ratio (typical of its kind of tree: typical_materials.h, or the
+//    user's), marked `assumed`, so that a static scan alone still animates.
 //  - Mass: core's Material::mass_kg is the modal mass m of paper Eq. 6 for modes normalised to a
 //    unit tip deflection (a static tip force F bends the branch by F / k, k = 4 m pi^2 f^2). For a
 //    cantilever whose first mode shape is phi (phi(tip) = 1) the modal mass is
@@ -23,6 +26,9 @@
 //   simtree::simready::BuildReport report;
 //   const simtree::Tree tree =
 //       simtree::simready::BuildSimulationReadyTree(static_tree, materials, {}, &report);
+//   // No pull test: typical values of the kind of tree, marked assumed.
+//   const simtree::Tree assumed = simtree::simready::BuildAssumedSimulationReadyTree(
+//       static_tree, simtree::simready::AssumedMaterialOf("magnolia"));
 
 #include <string>
 #include <vector>
@@ -30,6 +36,7 @@
 #include "simtree/core/tree.h"
 #include "simtree/identification/materials_file.h"
 #include "simtree/simready/detail/interpolation.h"
+#include "simtree/simready/detail/typical_materials.h"
 
 namespace simtree::simready {
 
@@ -47,9 +54,25 @@ struct BuildOptions {
   void Validate() const;
 };
 
+// One frequency and damping ratio given to every branch of a tree without a pull test.
+struct AssumedMaterial {
+  double frequency_hz = 0.0;   // every mode's natural frequency, Hz
+  double damping_ratio = 0.0;  // every mode's damping ratio, in (0, 1)
+  std::string origin;          // where the values come from, for the log: "magnolia, Table IV"
+
+  // Throws InputError naming the field for a frequency outside 0.01-100 Hz or a damping ratio
+  // outside (0, 1).
+  void Validate() const;
+};
+
+// The middle of the paper's Table IV ranges for `species` (typical_materials.h); throws
+// InputError listing the known species otherwise.
+AssumedMaterial AssumedMaterialOf(const std::string& species);
+
 struct BuildReport {
   int measured = 0;      // branches whose modes come from materials.json
   int interpolated = 0;  // branches whose modes the interpolation gave
+  int assumed = 0;       // branches given an AssumedMaterial (a tree without a pull test)
   InterpolationModel interpolation;
   double total_mass_kg = 0.0;  // the whole tree, density times volume
 };
@@ -71,6 +94,13 @@ std::vector<double> SubtreeMasses(const Tree& tree, double density_kg_m3);
 Tree BuildSimulationReadyTree(const Tree& static_tree,
                               const identification::MaterialsFile& materials,
                               const BuildOptions& options = {}, BuildReport* report = nullptr);
+
+// A tree without a pull test: every branch `assumed`'s frequency and damping on all three modes,
+// marked MaterialSource::kAssumed, with modal masses and stiffnesses as above. Throws InputError
+// for options or values out of range.
+Tree BuildAssumedSimulationReadyTree(const Tree& static_tree, const AssumedMaterial& assumed,
+                                     const BuildOptions& options = {},
+                                     BuildReport* report = nullptr);
 
 // Branch ids in depth-first order become 0..n-1; parents, markers follow. Returns the new tree
 // and, in `new_id`, the new id of each old one.

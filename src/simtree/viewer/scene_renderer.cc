@@ -302,7 +302,9 @@ void SceneRenderer::Impl::UpdateTints(const SceneStyle& style) {
       const MaterialSource source = b.material ? b.material->source : MaterialSource::kDefault;
       if (source == MaterialSource::kMeasured) tint << 0.15f, 0.70f, 0.25f, 1.0f;
       if (source == MaterialSource::kInterpolated) tint << 0.95f, 0.65f, 0.10f, 1.0f;
-      if (source == MaterialSource::kDefault) tint << 0.55f, 0.55f, 0.55f, 1.0f;
+      if (source == MaterialSource::kDefault || source == MaterialSource::kAssumed) {
+        tint << 0.55f, 0.55f, 0.55f, 1.0f;
+      }
     }
     if (b.id == style.hovered_branch) tint = Eigen::Vector4f(1.0f, 0.95f, 0.3f, 0.45f);
     if (b.id == style.selected_branch) tint = Eigen::Vector4f(1.0f, 0.45f, 0.05f, 0.8f);

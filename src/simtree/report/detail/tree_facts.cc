@@ -19,10 +19,8 @@ std::string TreeFactsTable(const TreeSummary& t) {
   table.AddRow({"branch length in all", FormatNumber(t.total_length_m, 1) + " m"});
   table.AddRow({"markers", std::to_string(t.markers)});
   if (t.with_material > 0) {
-    table.AddRow({"materials", fmt::format("{} of {} branches ({} measured, {} interpolated, {} "
-                                           "default)",
-                                           t.with_material, t.branches, t.measured, t.interpolated,
-                                           t.defaulted)});
+    table.AddRow({"materials", fmt::format("{} of {} branches ({})", t.with_material, t.branches,
+                                           FormatMaterialSources(t))});
     table.AddRow(
         {"natural frequency", fmt::format("{} - {} Hz", FormatNumber(t.min_frequency_hz, 2),
                                           FormatNumber(t.max_frequency_hz, 2))});

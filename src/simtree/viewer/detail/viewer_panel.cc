@@ -148,6 +148,7 @@ void Viewer::Impl::DrawHoverTooltip() {
               m.modes[0].damping_ratio, m.stiffness);
   ImGui::Text("%s", m.source == MaterialSource::kMeasured       ? "measured"
                     : m.source == MaterialSource::kInterpolated ? "interpolated"
+                    : m.source == MaterialSource::kAssumed      ? "assumed (typical, not measured)"
                                                                 : "default (not measured)");
   ImGui::EndTooltip();
 }
