@@ -677,6 +677,36 @@ PullStreamOutput RenderPullStream(const SynthOptions& options, const Tree& tree,
   return out;
 }
 
+// The tripod. With a colour camera of its own, the person frames the tree on the colour preview:
+// the colour camera takes PullCameraPose's aim and the depth camera sits beside it (4.9 degrees
+// lower); the stream's images and ground truth are in the colour camera's frame.
+PullRig MakePullRig(const SynthOptions& options, const Eigen::Isometry3d& pull_camera,
+                    const SensorModel& sensor) {
+  PullRig rig{.world_from_depth = pull_camera, .depth_sensor = sensor, .color = std::nullopt};
+  if (options.HasColorCamera()) {
+    rig.color = AzureColorCamera::ForSize(options.color_width, options.color_height);
+    rig.world_from_depth = pull_camera * rig.color->color_from_depth;
+  }
+  return rig;
+}
+
+// The lowest 100 modes reach 8-15 Hz on the presets; the modal integration adds the static
+// response of the rest, and their share of any marker's motion after release is far below the
+// sensor's noise. Asking for every mode below 20 Hz instead costs 300+ modes and ~20x the time.
+ModalBasis ComputeSynthModes(const FemModel& model) {
+  ModesOptions modes_options;
+  modes_options.count = 100;
+  return ComputeModes(model, modes_options);
+}
+
+// The stream's frame times: i / fps for every frame that starts within `duration_s`.
+std::vector<double> FrameTimes(double duration_s, double fps) {
+  const int frame_count = static_cast<int>(std::floor(duration_s * fps + 1e-9));
+  std::vector<double> times(frame_count);
+  for (int i = 0; i < frame_count; ++i) times[i] = i / fps;
+  return times;
+}
+
 }  // namespace
 
 std::string SynthReport::Summary() const {
@@ -705,14 +735,7 @@ SynthReport RunSynth(const SynthOptions& options, const fs::path& out) {
       ChoosePull(tree, MarkerPlacementOptions{}.min_radius_m, options.pull_position);
   const Eigen::Isometry3d pull_camera = PullCameraPose(tree, pull_setup.outward);
   const SensorModel sensor = options.hard ? SensorModel::Hard() : SensorModel::AzureKinectNfov();
-  // The tripod. With a colour camera of its own, the person frames the tree on the colour
-  // preview: the colour camera takes PullCameraPose's aim and the depth camera sits beside it
-  // (4.9 degrees lower); the stream's images and ground truth are in the colour camera's frame.
-  PullRig rig{.world_from_depth = pull_camera, .depth_sensor = sensor, .color = std::nullopt};
-  if (options.HasColorCamera()) {
-    rig.color = AzureColorCamera::ForSize(options.color_width, options.color_height);
-    rig.world_from_depth = pull_camera * rig.color->color_from_depth;
-  }
+  const PullRig rig = MakePullRig(options, pull_camera, sensor);
   MarkerPlacementOptions placement =
       TapePlacement(options, pull_setup, pull_camera, sensor.FocalLengthPx());
   SceneOptions scene_options =
@@ -734,12 +757,7 @@ SynthReport RunSynth(const SynthOptions& options, const fs::path& out) {
   // ---- 2. The FEM oracle: modes, and the rope's force for the wanted deflection.
   const Clock::time_point fem_start = Clock::now();
   const FemModel model(tree, species.wood.Properties(), SpeciesFemOptions(species));
-  // The lowest 100 modes reach 8-15 Hz on the presets; the modal integration adds the static
-  // response of the rest, and their share of any marker's motion after release is far below the
-  // sensor's noise. Asking for every mode below 20 Hz instead costs 300+ modes and ~20x the time.
-  ModesOptions modes_options;
-  modes_options.count = 100;
-  const ModalBasis modes = ComputeModes(model, modes_options);
+  const ModalBasis modes = ComputeSynthModes(model);
   report.fem_dof = model.dof_count();
   report.fem_modes = modes.count();
   report.first_frequency_hz = modes.frequency_hz[0];
@@ -758,9 +776,8 @@ SynthReport RunSynth(const SynthOptions& options, const fs::path& out) {
   report.pull_force_n = force;
   report.pull_release_s = pull.release_s;
 
-  const int frame_count = static_cast<int>(std::floor(duration * options.fps + 1e-9));
-  std::vector<double> frame_times(frame_count);
-  for (int i = 0; i < frame_count; ++i) frame_times[i] = i / options.fps;
+  const std::vector<double> frame_times = FrameTimes(duration, options.fps);
+  const int frame_count = static_cast<int>(frame_times.size());
   std::vector<TreePose> frame_poses(frame_count);
   const PullResult pull_run = IntegrateFramePoses(model, modes, pull, frame_times, frame_poses);
   ModalTruthOptions truth_options;
