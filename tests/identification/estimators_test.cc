@@ -1,6 +1,7 @@
 #include "simtree/identification/estimators.h"
 
 #include <cmath>
+#include <limits>
 #include <numeric>
 
 #include <gmock/gmock.h>
@@ -101,6 +102,25 @@ TEST(Estimators, FitStandardDeviationsMatchTheScatter) {
   EXPECT_LT(predicted_f, 2.0 * stdev(f));
   EXPECT_GT(predicted_z, 0.5 * stdev(z));
   EXPECT_LT(predicted_z, 2.0 * stdev(z));
+}
+
+TEST(Estimators, APoleTheCovarianceCannotPinHasAnInfiniteStandardDeviationNotZero) {
+  const double s = 0.3, w = 8.0;  // about 1.27 Hz, damping 0.037
+  FittedMode resolved, unresolved, unbounded;
+  SetPole(s, w, Eigen::Matrix2d::Identity() * 1e-6, resolved);
+  EXPECT_GT(resolved.frequency_std_hz, 0.0);
+  EXPECT_TRUE(std::isfinite(resolved.frequency_std_hz));
+  EXPECT_NEAR(resolved.frequency_hz, std::hypot(s, w) / (2 * M_PI), 1e-12);
+  // Infinite variances of both signs in the propagation: NaN, which must not read as certain.
+  const double inf = std::numeric_limits<double>::infinity();
+  Eigen::Matrix2d nan_covariance;
+  nan_covariance << inf, -inf, -inf, inf;
+  SetPole(s, w, nan_covariance, unresolved);
+  EXPECT_EQ(unresolved.frequency_std_hz, inf);
+  EXPECT_EQ(unresolved.damping_std, inf);
+  SetPole(s, w, Eigen::Matrix2d::Identity() * inf, unbounded);
+  EXPECT_EQ(unbounded.frequency_std_hz, inf);
+  EXPECT_EQ(unbounded.damping_std, inf);
 }
 
 TEST(Estimators, TwoPlanesShareTheirPolesAndEachPlaneGetsItsOwnDominantMode) {

@@ -164,7 +164,8 @@ struct SearchBand {
 SearchBand BandOf(const EstimatorOptions& options, double duration_s, double dt);
 
 // Sets a fitted mode's pole (decay rate s, damped angular frequency w >= 0), its natural
-// frequency and damping ratio, and their standard deviations from the 2 x 2 covariance of (s, w).
+// frequency and damping ratio, and their standard deviations from the 2 x 2 covariance of (s, w)
+// (infinite where the covariance cannot say: an unresolved direction, NaN).
 void SetPole(double decay_rate, double angular_frequency, const Eigen::Matrix2d& covariance,
              FittedMode& mode);
 

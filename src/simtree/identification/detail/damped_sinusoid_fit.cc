@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 
 #include <fmt/format.h>
 #include <Eigen/Eigenvalues>
@@ -491,6 +492,20 @@ DampedSinusoidFit FitDampedSinusoids(const SampledSignal& signal, double min_hz,
   return Describe(best, data, out.candidates);
 }
 
+namespace {
+
+// A variance's square root. A direction the fit cannot resolve has an infinite variance, and
+// infinities of both signs in the propagation sum to NaN: both mean "unknown", an infinite
+// standard deviation, never a zero one (which would read as a perfectly certain value).
+double StandardDeviation(double variance) {
+  if (std::isnan(variance) || variance == std::numeric_limits<double>::infinity()) {
+    return std::numeric_limits<double>::infinity();
+  }
+  return std::sqrt(std::max(0.0, variance));
+}
+
+}  // namespace
+
 void SetPole(double decay_rate, double angular_frequency, const Eigen::Matrix2d& covariance,
              FittedMode& mode) {
   const double s = decay_rate, w = angular_frequency, wn = std::hypot(s, w);
@@ -501,8 +516,8 @@ void SetPole(double decay_rate, double angular_frequency, const Eigen::Matrix2d&
   // Propagate the (s, w) covariance to f = wn / 2pi and zeta = s / wn.
   const Eigen::Vector2d df(s / (kTwoPi * wn), w / (kTwoPi * wn));
   const Eigen::Vector2d dz(w * w / (wn * wn * wn), -s * w / (wn * wn * wn));
-  mode.frequency_std_hz = std::sqrt(std::max(0.0, df.dot(covariance * df)));
-  mode.damping_std = std::sqrt(std::max(0.0, dz.dot(covariance * dz)));
+  mode.frequency_std_hz = StandardDeviation(df.dot(covariance * df));
+  mode.damping_std = StandardDeviation(dz.dot(covariance * dz));
 }
 
 }  // namespace simtree::identification
