@@ -5,7 +5,9 @@
 //   bench_identification --tables            accuracy tables only (Monte Carlo, seeded)
 //   bench_identification                     timings only
 //   bench_identification --independent [SEEDS]
-//                                            independent-mode records (every link its own modes)
+//                                            independent-mode records (every link its own modes);
+//                                            on stderr each link's errors, also in standard
+//                                            deviations of its estimate
 //   bench_identification --score SCENE MATERIALS [READY_TREE]
 //                                            scores an identification of a synth scene against
 //                                            SCENE/gt/modal.json (and a built tree's branches)
@@ -199,6 +201,14 @@ void IndependentTable(int seeds) {
         col.df.push_back(std::abs(e.frequency_hz / t.frequency_hz - 1));
         col.dz.push_back(std::abs(e.damping_ratio / t.damping_ratio - 1));
         if (std::isfinite(e.frequency_std_hz) && std::isfinite(e.damping_std)) {
+          // Per link on stderr: truth's distance from the value in standard deviations.
+          std::fprintf(stderr, "seed %d %s %s %s f %+.2f%% %+.2f sd, zeta %+.1f%% %+.2f sd\n", seed,
+                       link.deflection.link.label.c_str(), names[c],
+                       link.poles.shared ? "shared" : "own",
+                       100 * (e.frequency_hz / t.frequency_hz - 1),
+                       (e.frequency_hz - t.frequency_hz) / e.frequency_std_hz,
+                       100 * (e.damping_ratio / t.damping_ratio - 1),
+                       (e.damping_ratio - t.damping_ratio) / e.damping_std);
           ++col.with_sd;
           col.f_covered += std::abs(e.frequency_hz - t.frequency_hz) <= e.frequency_std_hz;
           col.z_covered += std::abs(e.damping_ratio - t.damping_ratio) <= e.damping_std;

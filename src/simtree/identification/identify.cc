@@ -10,6 +10,7 @@
 #include "simtree/core/error.h"
 #include "simtree/core/option_checks.h"
 #include "simtree/identification/detail/link_model_choice.h"
+#include "simtree/identification/detail/shared_pole_uncertainty.h"
 
 namespace simtree::identification {
 
@@ -254,6 +255,8 @@ void ApplyJointPoles(const IdentifyOptions& options, IdentificationResult& out) 
   int shared = 0;
   for (size_t i = 0; i < signals.size(); ++i) {
     SignalEstimate& e = joint.links[i];
+    // The stack's standard deviations widened by this link's own record of the shared mode.
+    WidenBySharedMisfit(*estimates[i], e);
     LinkPolesUse& use = links[i]->poles;
     use.joint = e.dominant;
     if (e.dominant.status != EstimateStatus::kOk) {

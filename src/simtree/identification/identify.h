@@ -71,9 +71,11 @@ const char* ToString(JointPolesOutcome outcome);
 
 // Which poles a link's damped sinusoid fit was read on, and why (materials.json "poles").
 struct LinkPolesUse {
-  bool shared = false;       // the joint poles (else the link's own fit)
-  std::string why;           // for a person: the override, or the criterion's numbers
-  ModalEstimate own, joint;  // both readings of the fit's dominant mode (kFailed when not made)
+  bool shared = false;  // the joint poles (else the link's own fit)
+  std::string why;      // for a person: the override, or the criterion's numbers
+  // Both readings of the fit's dominant mode (kFailed when not made); the joint one's standard
+  // deviations widened by its discrepancy with the own (detail/shared_pole_uncertainty.h).
+  ModalEstimate own, joint;
 };
 
 struct LinkIdentification {

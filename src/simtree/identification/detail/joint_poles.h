@@ -17,7 +17,8 @@
 // Gaps: the principal components need every sample, so each link's gaps are filled by linear
 // interpolation for the starting fit only. Standard deviations are the refinement's (its
 // Jacobian with the amplitudes projected out, inflated for lag-1 correlated residuals): one per
-// pole, shared by every link that reads that pole.
+// pole, shared by every link that reads that pole; `identify` widens them per link by what the
+// link's own fit says (shared_pole_uncertainty.h).
 //
 // Merged poles: BIC on the components may take two close modes for one pole, so every pole is
 // offered split in two and refined on every link; the split is kept when the joint BIC falls
