@@ -1,5 +1,8 @@
 #include "simtree/identification/materials_file.h"
 
+#include <cmath>
+#include <limits>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -44,7 +47,7 @@ TEST(MaterialsFile, FromAnIdentificationWithBranchModesAndAMissingLink) {
   EXPECT_EQ(m.ranges.measured, 2);  // the root marker does not move: flat
 }
 
-TEST(MaterialsFile, JsonRoundTripWritesNullForWhatWasNotEstimated) {
+TEST(MaterialsFile, JsonRoundTripWritesNullForWhatWasNotEstimatedOrUnresolved) {
   const MaterialsFile m = MaterialsFromIdentification(Identified(), "t.csv");
   const nlohmann::ordered_json j = MaterialsToJson(m);
   EXPECT_TRUE(j["links"][3]["frequency_hz"].is_null());
@@ -58,6 +61,24 @@ TEST(MaterialsFile, JsonRoundTripWritesNullForWhatWasNotEstimated) {
   WriteMaterialsJson(m, dir / "m.json");
   const MaterialsFile back = ReadMaterialsJson(dir / "m.json");
   EXPECT_EQ(MaterialsToJson(back).dump(), j.dump());
+
+  // A fit's standard deviation it cannot give (a pole it cannot resolve) is infinite: null in the
+  // file and infinite again when read, so the reader's summary leaves the link out as the
+  // writer's did; a spectral estimator's null stays "no uncertainty given" (NaN).
+  MaterialsFile unresolved = m;
+  LinkMaterial& link = unresolved.links[2];
+  ASSERT_EQ(link.value.status, EstimateStatus::kOk);
+  link.value.frequency_std_hz = link.value.damping_std = std::numeric_limits<double>::infinity();
+  WriteMaterialsJson(unresolved, dir / "unresolved.json");
+  const MaterialsFile read = ReadMaterialsJson(dir / "unresolved.json");
+  EXPECT_TRUE(std::isinf(read.links[2].value.frequency_std_hz));
+  EXPECT_TRUE(std::isinf(read.links[2].value.damping_std));
+  EXPECT_THAT(read.ranges.uncertain, ::testing::Contains(link.label));
+  for (const auto& [kind, e] : read.links[1].estimators) {
+    if (kind == EstimatorKind::kHalfPowerFft) {
+      EXPECT_TRUE(std::isnan(e.frequency_std_hz));
+    }
+  }
 }
 
 // The summary's ranges leave out a value the fit is unsure of; a reader recomputes them alike.

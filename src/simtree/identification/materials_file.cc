@@ -15,6 +15,7 @@ namespace {
 
 using ojson = nlohmann::ordered_json;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 ojson Number(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }
 
@@ -44,7 +45,10 @@ double NullableNumber(const JsonNode& obj, const std::string& key) {
   return value && !value->is_null() ? value->Number() : kNaN;
 }
 
-ModalEstimate EstimateFromJson(const JsonNode& j) {
+// `kind` is the estimator that gave the estimate: a fit writes null for a standard deviation its
+// covariance cannot give (infinite in memory: a pole it cannot resolve), a spectral estimator
+// because it gives none, so the fit's null reads back as infinite.
+ModalEstimate EstimateFromJson(const JsonNode& j, EstimatorKind kind) {
   j.ExpectObject();
   ModalEstimate e;
   e.status = ParseStatus(j.Field("status"));
@@ -53,6 +57,10 @@ ModalEstimate EstimateFromJson(const JsonNode& j) {
   e.damping_ratio = NullableNumber(j, "damping_ratio");
   e.frequency_std_hz = NullableNumber(j, "frequency_std_hz");
   e.damping_std = NullableNumber(j, "damping_std");
+  if (kind == EstimatorKind::kDampedSinusoidFit && e.status == EstimateStatus::kOk) {
+    if (std::isnan(e.frequency_std_hz)) e.frequency_std_hz = kInfinity;
+    if (std::isnan(e.damping_std)) e.damping_std = kInfinity;
+  }
   e.amplitude = NullableNumber(j, "amplitude");
   if (e.status == EstimateStatus::kOk && (!e.has_frequency() || !e.has_damping())) {
     j.Fail("status \"ok\" needs a frequency_hz and a damping_ratio");
@@ -89,7 +97,8 @@ void ReadRecord(const JsonNode& rec, MaterialsFile& m) {
   }
 }
 
-LinkMaterial LinkFromJson(const JsonNode& j) {
+// `estimator`: the file's, which gave the link's value, planes and pole readings.
+LinkMaterial LinkFromJson(const JsonNode& j, EstimatorKind estimator) {
   j.ExpectObject();
   LinkMaterial l;
   l.child = j.Integer("child");
@@ -106,10 +115,10 @@ LinkMaterial LinkFromJson(const JsonNode& j) {
       kind->Fail(fmt::format("expected relative_angle or displacement, got \"{}\"", name));
     }
   }
-  l.value = EstimateFromJson(j);
+  l.value = EstimateFromJson(j, estimator);
   if (const auto planes = j.Find("planes")) {
     if (planes->size() != 2) planes->Fail("expected 2 planes (u, w)");
-    for (int c = 0; c < 2; ++c) l.planes[c] = EstimateFromJson(planes->Item(c));
+    for (int c = 0; c < 2; ++c) l.planes[c] = EstimateFromJson(planes->Item(c), estimator);
   } else {
     l.planes = {l.value, l.value};
   }
@@ -119,7 +128,7 @@ LinkMaterial LinkFromJson(const JsonNode& j) {
       const JsonNode node(e, estimators->source(), Member(estimators->at(), name));
       const auto kind = ParseEstimatorKind(name);
       if (!kind) node.Fail("unknown estimator");
-      l.estimators.emplace_back(*kind, EstimateFromJson(node));
+      l.estimators.emplace_back(*kind, EstimateFromJson(node, *kind));
     }
   }
   if (const auto poles = j.Find("poles"); poles && !poles->is_null()) {
@@ -129,8 +138,9 @@ LinkMaterial LinkFromJson(const JsonNode& j) {
       poles->Fail(fmt::format("used: expected shared or own, got \"{}\"", l.poles));
     }
     if (const auto why = poles->Find("why")) l.poles_why = why->String();
-    if (const auto shared = poles->Find("shared")) l.shared_reading = EstimateFromJson(*shared);
-    if (const auto own = poles->Find("own")) l.own_reading = EstimateFromJson(*own);
+    if (const auto shared = poles->Find("shared"))
+      l.shared_reading = EstimateFromJson(*shared, estimator);
+    if (const auto own = poles->Find("own")) l.own_reading = EstimateFromJson(*own, estimator);
   }
   return l;
 }
@@ -328,7 +338,8 @@ MaterialsFile MaterialsFromJson(const nlohmann::json& value, const std::string& 
   MaterialsFile m;
   m.estimator = EstimatorFromJson(doc.Field("estimator"));
   if (const auto record = doc.Find("record")) ReadRecord(*record, m);
-  for (const JsonNode& link : doc.Field("links").Items()) m.links.push_back(LinkFromJson(link));
+  for (const JsonNode& link : doc.Field("links").Items())
+    m.links.push_back(LinkFromJson(link, m.estimator));
   // The summary is recomputed from the links, not read: it cannot disagree with them.
   std::vector<LabeledEstimate> values;
   for (const LinkMaterial& l : m.links) values.push_back({l.label, l.value});
