@@ -11,7 +11,7 @@ namespace simtree {
 namespace {
 
 constexpr int kNewtonIterations = 20;
-constexpr double kNewtonTolerance = 1e-12;  // squared normalized residual
+constexpr double kNewtonTolerance = 1e-20;  // squared normalized residual: ~1e-7 pixels
 constexpr double kJacobianStep = 1e-7;
 
 bool WithinRadius(const BrownConradyCamera& c, const Eigen::Vector2d& xy) {
