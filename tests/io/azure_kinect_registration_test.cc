@@ -51,8 +51,10 @@ TEST(BrownConrady, ProjectAndUnprojectRoundTripOverBothCameras) {
   EXPECT_TRUE(cal.depth.PixelRay(cal.depth.cx, cal.depth.cy).has_value());
 }
 
-// The depth image the depth camera sees of the plane z = z_color in the colour camera.
-DepthImage PlaneDepth(const AzureCalibration& cal, double z_color) {
+// The depth image the depth camera sees of the plane z = z_color in the colour camera, with
+// +-noise_mm of deterministic noise as a real sensor has (neighbouring footprints then do not
+// meet exactly).
+DepthImage PlaneDepth(const AzureCalibration& cal, double z_color, int noise_mm = 0) {
   DepthImage depth(cal.depth.width, cal.depth.height, 0);
   const Eigen::RowVector3d normal = cal.depth_to_color.rotation.row(2);
   for (int v = 0; v < depth.height; ++v) {
@@ -61,7 +63,10 @@ DepthImage PlaneDepth(const AzureCalibration& cal, double z_color) {
       if (!ray) continue;
       const Eigen::Vector3d r(ray->x(), ray->y(), 1.0);
       const double t = (z_color - cal.depth_to_color.translation_m.z()) / normal.dot(r);
-      depth.at(u, v) = static_cast<uint16_t>(std::lround(t * 1000));
+      const int noise =
+          noise_mm > 0 ? static_cast<int>((u * 7919 + v * 104729) % (2 * noise_mm + 1)) - noise_mm
+                       : 0;
+      depth.at(u, v) = static_cast<uint16_t>(std::lround(t * 1000) + noise);
     }
   }
   return depth;
@@ -70,7 +75,7 @@ DepthImage PlaneDepth(const AzureCalibration& cal, double z_color) {
 TEST(AzureRegistration, APlaneLandsAtItsDepthOnEveryColourPixelTheDepthCameraSees) {
   const AzureCalibration cal = RealCalibration();
   const AzureRegistration reg(cal);
-  const DepthImage registered = reg.RegisterDepth(PlaneDepth(cal, 1.2));
+  const DepthImage registered = reg.RegisterDepth(PlaneDepth(cal, 1.2, 4));
   const CameraIntrinsics& k = reg.color_pinhole();
   const RigidTransform color_to_depth = cal.depth_to_color.Inverse();
   int seen = 0, covered = 0;
@@ -92,7 +97,7 @@ TEST(AzureRegistration, APlaneLandsAtItsDepthOnEveryColourPixelTheDepthCameraSee
   }
   EXPECT_GT(seen, 300000);
   EXPECT_GT(static_cast<double>(covered) / seen, 0.999) << covered << " of " << seen;
-  EXPECT_LE(worst_mm, 2.0);
+  EXPECT_LE(worst_mm, 2.0 + 4.0);
 }
 
 TEST(AzureRegistration, ABlockLandsAtItsPixelInFrontOfTheBackground) {

@@ -168,6 +168,10 @@ struct AzureRegistrationOptions {
   // A depth pixel is splatted over the colour pixels its footprint covers, up to this many on a
   // side (a grazing surface's footprint is long and thin; larger ones are clipped to it).
   int max_splat_pixels = 6;
+  // Each footprint grows by this much (colour pixels) on every side: neighbouring depth pixels
+  // at slightly different (noisy) depths project to footprints that no longer meet exactly, and
+  // would leave single-pixel holes in rings where their edges pass through pixel centres.
+  double splat_margin_px = 0.3;
   void Validate() const;
 };
 

@@ -64,6 +64,7 @@ uint8_t Bilinear(const RgbImage& image, float x, float y, int channel) {
 
 void AzureRegistrationOptions::Validate() const {
   CheckAtLeast("max_splat_pixels", max_splat_pixels, 1);
+  CheckInRange("splat_margin_px", splat_margin_px, 0.0, 1.0);
 }
 
 AzureRegistration::AzureRegistration(const AzureCalibration& calibration,
@@ -131,8 +132,9 @@ DepthImage AzureRegistration::RegisterDepth(const DepthImage& depth) const {
       if (!valid) continue;
       // The colour pixel centres inside the footprint, at most max_side on a side around it.
       const double mid_x = (lo_x + hi_x) / 2, mid_y = (lo_y + hi_y) / 2;
-      const double half_x = std::min((hi_x - lo_x) / 2, max_side / 2.0);
-      const double half_y = std::min((hi_y - lo_y) / 2, max_side / 2.0);
+      const double margin = options_.splat_margin_px;
+      const double half_x = std::min((hi_x - lo_x) / 2 + margin, max_side / 2.0);
+      const double half_y = std::min((hi_y - lo_y) / 2 + margin, max_side / 2.0);
       const int x0 = std::max(0, static_cast<int>(std::ceil(mid_x - half_x)));
       const int x1 = std::min(k.width - 1, static_cast<int>(std::floor(mid_x + half_x)));
       const int y0 = std::max(0, static_cast<int>(std::ceil(mid_y - half_y)));
