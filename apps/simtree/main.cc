@@ -58,6 +58,7 @@ int main(int argc, char** argv) {
   RegisterConvert(app);
   RegisterMesh(app);
   RegisterInfo(app);
+  RegisterCaptureFrom(app);
 
   std::unique_ptr<oneapi::tbb::global_control> thread_limit;
   app.parse_complete_callback([&] {
