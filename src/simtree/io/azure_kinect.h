@@ -162,6 +162,44 @@ class AzureKinectReader {
 };
 
 // ---------------------------------------------------------------------------------------------
+// Writing recordings of the same layout (tests; later `capture-export`)
+
+enum class AzureColorFormat { kMjpeg, kNv12, kYuy2, kBgra };
+
+struct AzureWriterOptions {
+  AzureColorFormat color_format = AzureColorFormat::kMjpeg;
+  int color_width = 0;  // 0: no COLOR track
+  int color_height = 0;
+  int depth_width = 0;  // 0: no DEPTH track
+  int depth_height = 0;
+  bool ir = false;               // an IR track of the depth size
+  std::string calibration_json;  // the calibration.json attachment; "" writes none
+  int64_t depth_delay_us = 0;    // written as K4A_DEPTH_DELAY_NS
+  void Validate() const;
+};
+
+// Writes the tracks k4arecorder writes (COLOR as MJPEG or raw NV12/YUY2/BGRA, DEPTH and IR as raw
+// b16g, the calibration attachment and the K4A tags) with libavformat's Matroska muxer. Matroska
+// as libav writes it keeps millisecond timestamps (k4arecorder keeps microseconds), so timestamps
+// are rounded to the millisecond. The file appears at Close(); without it, nothing does.
+class AzureKinectWriter {
+ public:
+  AzureKinectWriter(const std::filesystem::path& path, const AzureWriterOptions& options);
+  ~AzureKinectWriter();
+  AzureKinectWriter(const AzureKinectWriter&) = delete;
+  AzureKinectWriter& operator=(const AzureKinectWriter&) = delete;
+
+  // The capture's frames at their own timestamps (color_timestamp_us, depth_timestamp_us; IR at
+  // the depth's). Timestamps must increase per track.
+  void Write(const AzureCapture& capture);
+  void Close();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// ---------------------------------------------------------------------------------------------
 // Undistortion and registration
 
 struct AzureRegistrationOptions {
