@@ -51,6 +51,63 @@ TEST(CaptureFromRecordings, TheRealRecordingBecomesAViewAndAPullStream) {
   EXPECT_EQ(capture.pull->intrinsics, view.intrinsics);
 }
 
+// A textured scene 1.5 m away: shifted by `shift` pixels, box-blurred over `blur` pixels.
+AzureCapture Scene(int64_t t_us, int shift, int blur) {
+  AzureCapture c;
+  c.color_timestamp_us = c.depth_timestamp_us = t_us;
+  c.color.emplace(1280, 720);
+  for (int y = 0; y < 720; ++y) {
+    for (int x = 0; x < 1280; ++x) {
+      int sum = 0;
+      for (int k = 0; k < blur; ++k) sum += (((x + shift + k) / 8 + y / 8) % 2) ? 200 : 40;
+      for (int ch = 0; ch < 3; ++ch) c.color->at(x, y, ch) = static_cast<uint8_t>(sum / blur);
+    }
+  }
+  c.depth.emplace(320, 288, 1500);
+  return c;
+}
+
+TEST(CaptureFromRecordings, PicksTheSharpStillCaptureAndKeepsPullTimes) {
+  const auto dir = test::TempDir();
+  AzureWriterOptions o;
+  o.color_format = AzureColorFormat::kBgra;
+  o.color_width = 1280;
+  o.color_height = 720;
+  o.depth_width = 320;
+  o.depth_height = 288;
+  o.calibration_json = test::ReadText(test::SharedData("azure-kinect/pyk4a_calibration.json"));
+  {
+    // Moving, still but blurred (1, 2), still and sharp (3, 4; 5 moves to 6), moving.
+    AzureKinectWriter writer(dir / "scan.mkv", o);
+    const int shifts[] = {0, 20, 20, 20, 20, 20, 40};
+    const int blurs[] = {1, 5, 5, 1, 1, 1, 1};
+    for (int i = 0; i < 7; ++i) writer.Write(Scene(100000 + i * 200000, shifts[i], blurs[i]));
+    writer.Close();
+  }
+  {
+    // 5 fps; capture 2 dropped.
+    AzureKinectWriter writer(dir / "pull.mkv", o);
+    for (int i : {0, 1, 3, 4}) writer.Write(Scene(50000 + i * 200000, i, 1));
+    writer.Close();
+  }
+  CaptureFromOptions options;
+  options.scans = {dir / "scan.mkv"};
+  options.pull = dir / "pull.mkv";
+  const CaptureFromResult result = CaptureFromRecordings(options, dir / "capture");
+  ASSERT_EQ(result.views.size(), 1u);
+  EXPECT_EQ(result.views[0].candidates, 7);
+  EXPECT_EQ(result.views[0].capture, 3);  // the first of the sharp still ones
+  EXPECT_EQ(result.views[0].timestamp_us, 700000);
+  const Capture capture = OpenCapture(dir / "capture");
+  ASSERT_EQ(capture.pull->frames.size(), 4u);
+  const std::vector<int> numbers = {0, 1, 3, 4};
+  for (size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(capture.pull->frames[i].frame, numbers[i]);
+    EXPECT_NEAR(capture.pull->frames[i].time_s, 0.2 * numbers[i], 1e-9);
+  }
+  EXPECT_EQ(LoadPullFrame(*capture.pull, 3).depth.width, 1280);
+}
+
 TEST(StillFrame, PicksTheSharpestOfTheFramesThatMoveLeast) {
   // Frame 1 is sharpest but moving; of the still frames 0, 2, 3, frame 3 is sharpest.
   const std::vector<double> sharpness = {10, 50, 20, 30, 5};
