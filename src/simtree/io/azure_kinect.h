@@ -236,8 +236,17 @@ class AzureRegistration {
   AzureCalibration calibration_;
   AzureRegistrationOptions options_;
   CameraIntrinsics pinhole_;
-  std::vector<float> color_map_;   // per pinhole pixel: the distorted source (u, v); NaN: none
-  std::vector<float> depth_rays_;  // per depth pixel corner ((w+1) x (h+1)): undistorted (x, y)
+  // Per pinhole pixel, its bilinear source in the distorted image: the top-left tap's pixel
+  // index (-1: none) and the weights of the right and lower taps.
+  struct Tap {
+    int32_t index = -1;
+    float ax = 0;
+    float ay = 0;
+  };
+  static std::vector<Tap> ColorTaps(const BrownConradyCamera& camera);
+  std::vector<Tap> color_taps_;
+  // Per depth pixel corner ((w+1) x (h+1)): its ray in the colour camera's axes (x, y, z).
+  std::vector<float> depth_rays_;
 };
 
 }  // namespace simtree

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include <fmt/format.h>
+
+#include "simtree/core/error.h"
 #include "simtree/core/option_checks.h"
 #include "simtree/io/azure_kinect.h"
 
@@ -12,55 +15,51 @@ namespace {
 
 constexpr float kNone = std::numeric_limits<float>::quiet_NaN();
 
-// Per pinhole pixel, where it is in the distorted colour image.
-std::vector<float> ColorMap(const BrownConradyCamera& camera) {
-  std::vector<float> map(static_cast<size_t>(camera.width) * camera.height * 2, kNone);
-  for (int v = 0; v < camera.height; ++v) {
-    for (int u = 0; u < camera.width; ++u) {
-      const Eigen::Vector3d ray((u - camera.cx) / camera.fx, (v - camera.cy) / camera.fy, 1.0);
-      const std::optional<Eigen::Vector2d> source = camera.Project(ray);
-      if (!source) continue;
-      const size_t i = (static_cast<size_t>(v) * camera.width + u) * 2;
-      map[i] = static_cast<float>(source->x());
-      map[i + 1] = static_cast<float>(source->y());
-    }
-  }
-  return map;
-}
-
-// Per depth pixel corner ((u - 0.5, v - 0.5) for u in 0..w, v in 0..h), its undistorted ray.
-std::vector<float> CornerRays(const BrownConradyCamera& camera) {
+// Per depth pixel corner ((u - 0.5, v - 0.5) for u in 0..w, v in 0..h), its undistorted ray
+// (x, y, 1) turned into the colour camera's axes: the corner at depth z is then z * ray + t.
+std::vector<float> CornerRays(const BrownConradyCamera& camera, const Eigen::Matrix3d& rotation) {
   const int w = camera.width + 1;
   const int h = camera.height + 1;
-  std::vector<float> rays(static_cast<size_t>(w) * h * 2, kNone);
+  std::vector<float> rays(static_cast<size_t>(w) * h * 3, kNone);
   for (int v = 0; v < h; ++v) {
     for (int u = 0; u < w; ++u) {
       const std::optional<Eigen::Vector2d> ray = camera.PixelRay(u - 0.5, v - 0.5);
       if (!ray) continue;
-      const size_t i = (static_cast<size_t>(v) * w + u) * 2;
-      rays[i] = static_cast<float>(ray->x());
-      rays[i + 1] = static_cast<float>(ray->y());
+      const Eigen::Vector3d turned = rotation * Eigen::Vector3d(ray->x(), ray->y(), 1.0);
+      const size_t i = (static_cast<size_t>(v) * w + u) * 3;
+      for (int c = 0; c < 3; ++c) rays[i + c] = static_cast<float>(turned[c]);
     }
   }
   return rays;
 }
 
-uint8_t Bilinear(const RgbImage& image, float x, float y, int channel) {
-  const int x0 = static_cast<int>(std::floor(x));
-  const int y0 = static_cast<int>(std::floor(y));
-  const float ax = x - x0;
-  const float ay = y - y0;
-  auto at = [&](int xx, int yy) {
-    xx = std::clamp(xx, 0, image.width - 1);
-    yy = std::clamp(yy, 0, image.height - 1);
-    return static_cast<float>(image.at(xx, yy, channel));
-  };
-  const float top = at(x0, y0) * (1 - ax) + at(x0 + 1, y0) * ax;
-  const float bottom = at(x0, y0 + 1) * (1 - ax) + at(x0 + 1, y0 + 1) * ax;
-  return static_cast<uint8_t>(std::lround(top * (1 - ay) + bottom * ay));
-}
-
 }  // namespace
+
+// Per pinhole pixel, its bilinear taps in the distorted colour image (computed once, so a frame
+// costs four reads and a few multiplies per channel).
+std::vector<AzureRegistration::Tap> AzureRegistration::ColorTaps(const BrownConradyCamera& camera) {
+  std::vector<Tap> taps(static_cast<size_t>(camera.width) * camera.height);
+  for (int v = 0; v < camera.height; ++v) {
+    for (int u = 0; u < camera.width; ++u) {
+      const Eigen::Vector3d ray((u - camera.cx) / camera.fx, (v - camera.cy) / camera.fy, 1.0);
+      const std::optional<Eigen::Vector2d> source = camera.Project(ray);
+      if (!source || source->x() < -0.5 || source->y() < -0.5 || source->x() > camera.width - 0.5 ||
+          source->y() > camera.height - 0.5) {
+        continue;
+      }
+      // Clamped so the 2x2 taps stay inside; the weights carry the remainder.
+      const double x = std::clamp(source->x(), 0.0, camera.width - 1.0);
+      const double y = std::clamp(source->y(), 0.0, camera.height - 1.0);
+      const int x0 = std::min(static_cast<int>(x), camera.width - 2);
+      const int y0 = std::min(static_cast<int>(y), camera.height - 2);
+      Tap& t = taps[static_cast<size_t>(v) * camera.width + u];
+      t.index = y0 * camera.width + x0;
+      t.ax = static_cast<float>(x - x0);
+      t.ay = static_cast<float>(y - y0);
+    }
+  }
+  return taps;
+}
 
 void AzureRegistrationOptions::Validate() const {
   CheckAtLeast("max_splat_pixels", max_splat_pixels, 1);
@@ -74,22 +73,28 @@ AzureRegistration::AzureRegistration(const AzureCalibration& calibration,
   ValidateIntrinsics(calibration_.color.Pinhole(), "colour camera calibration");
   ValidateIntrinsics(calibration_.depth.Pinhole(), "depth camera calibration");
   pinhole_ = calibration_.color.Pinhole();
-  color_map_ = ColorMap(calibration_.color);
-  depth_rays_ = CornerRays(calibration_.depth);
+  color_taps_ = ColorTaps(calibration_.color);
+  depth_rays_ = CornerRays(calibration_.depth, calibration_.depth_to_color.rotation);
 }
 
 RgbImage AzureRegistration::UndistortColor(const RgbImage& color) const {
+  if (color.width != calibration_.color.width || color.height != calibration_.color.height) {
+    throw InputError("colour image", "",
+                     fmt::format("expected {}x{} (the calibration's colour size), got {}x{}",
+                                 calibration_.color.width, calibration_.color.height, color.width,
+                                 color.height));
+  }
   RgbImage out(pinhole_.width, pinhole_.height);
-  for (int v = 0; v < out.height; ++v) {
-    for (int u = 0; u < out.width; ++u) {
-      const size_t i = (static_cast<size_t>(v) * out.width + u) * 2;
-      const float x = color_map_[i];
-      const float y = color_map_[i + 1];
-      if (std::isnan(x) || x < -0.5f || y < -0.5f || x > color.width - 0.5f ||
-          y > color.height - 0.5f) {
-        continue;
-      }
-      for (int c = 0; c < 3; ++c) out.at(u, v, c) = Bilinear(color, x, y, c);
+  const uint8_t* in = color.pixels.data();
+  const size_t row = static_cast<size_t>(color.width) * 3;
+  for (size_t i = 0; i < color_taps_.size(); ++i) {
+    const Tap& t = color_taps_[i];
+    if (t.index < 0) continue;
+    const uint8_t* p = in + static_cast<size_t>(t.index) * 3;
+    for (int c = 0; c < 3; ++c) {
+      const float top = p[c] + t.ax * (p[3 + c] - p[c]);
+      const float bottom = p[row + c] + t.ax * (p[row + 3 + c] - p[row + c]);
+      out.pixels[i * 3 + c] = static_cast<uint8_t>(top + t.ay * (bottom - top) + 0.5f);
     }
   }
   return out;
@@ -97,7 +102,7 @@ RgbImage AzureRegistration::UndistortColor(const RgbImage& color) const {
 
 DepthImage AzureRegistration::RegisterDepth(const DepthImage& depth) const {
   const BrownConradyCamera& dc = calibration_.depth;
-  const RigidTransform& move = calibration_.depth_to_color;
+  const Eigen::Vector3d& t = calibration_.depth_to_color.translation_m;
   const CameraIntrinsics& k = pinhole_;
   const int corner_w = dc.width + 1;
   const int max_side = options_.max_splat_pixels;
@@ -111,23 +116,20 @@ DepthImage AzureRegistration::RegisterDepth(const DepthImage& depth) const {
       double lo_x = 1e30, lo_y = 1e30, hi_x = -1e30, hi_y = -1e30, z_color = 0;
       bool valid = true;
       for (int corner = 0; corner < 4 && valid; ++corner) {
-        const size_t i = (static_cast<size_t>(v + corner / 2) * corner_w + u + corner % 2) * 2;
-        if (std::isnan(depth_rays_[i])) {
+        const float* ray =
+            &depth_rays_[(static_cast<size_t>(v + corner / 2) * corner_w + u + corner % 2) * 3];
+        const double pz = z * ray[2] + t.z();
+        if (std::isnan(ray[0]) || pz <= 0) {
           valid = false;
           break;
         }
-        const Eigen::Vector3d p =
-            move.Apply(Eigen::Vector3d(depth_rays_[i] * z, depth_rays_[i + 1] * z, z));
-        if (p.z() <= 0) {
-          valid = false;
-          break;
-        }
-        const Eigen::Vector2d px = k.Project(p);
-        lo_x = std::min(lo_x, px.x());
-        hi_x = std::max(hi_x, px.x());
-        lo_y = std::min(lo_y, px.y());
-        hi_y = std::max(hi_y, px.y());
-        z_color += p.z() / 4;
+        const double x = k.fx * (z * ray[0] + t.x()) / pz + k.cx;
+        const double y = k.fy * (z * ray[1] + t.y()) / pz + k.cy;
+        lo_x = std::min(lo_x, x);
+        hi_x = std::max(hi_x, x);
+        lo_y = std::min(lo_y, y);
+        hi_y = std::max(hi_y, y);
+        z_color += pz / 4;
       }
       if (!valid) continue;
       // The colour pixel centres inside the footprint, at most max_side on a side around it.
