@@ -36,6 +36,7 @@ TEST(AzureKinectReader, ListsTheRecordersTracks) {
   EXPECT_EQ(depth->width, 640);
   EXPECT_EQ(depth->height, 576);
   EXPECT_EQ(reader.depth_delay_us(), 0);
+  EXPECT_EQ(reader.start_offset_us(), 336277);  // K4A_START_OFFSET_NS 336277000
 }
 
 TEST(AzureKinectReader, ReadsTheOneCaptureWithDepthInMillimetresAtTheRightPixels) {
@@ -138,6 +139,26 @@ TEST(AzureKinectReader, AMissingCalibrationAttachmentIsAnError) {
   const std::string error = test::ErrorOf<InputError>([&] { AzureKinectReader reader(path); });
   EXPECT_NE(error.find(path.string()), std::string::npos) << error;
   EXPECT_NE(error.find("calibration.json attachment"), std::string::npos) << error;
+}
+
+TEST(AzureKinectReader, AnUnsupportedColourFormatIsAnErrorNamingIt) {
+  // The colour track's FourCC (MJPG, in its VFW header) made XVID in a copy.
+  std::string data = test::ReadText(Recording());
+  const size_t at = data.find("MJPG");
+  ASSERT_NE(at, std::string::npos);
+  data.replace(at, 4, "XVID");
+  const fs::path path = test::TempDir() / "xvid.mkv";
+  test::WriteText(path, data);
+  const std::string error = test::ErrorOf<InputError>([&] { AzureKinectReader reader(path); });
+  EXPECT_NE(error.find(path.string() + ": COLOR: expected colour in MJPEG, NV12, YUY2 or BGRA"),
+            std::string::npos)
+      << error;
+  EXPECT_NE(error.find("XVID"), std::string::npos) << error;
+  // Depth alone still reads.
+  AzureReaderOptions depth_only;
+  depth_only.read_color = false;
+  AzureKinectReader reader(path, depth_only);
+  EXPECT_TRUE(reader.Next().has_value());
 }
 
 TEST(AzureKinectReader, NotARecordingIsAnError) {

@@ -151,6 +151,9 @@ class AzureKinectReader {
   const std::string& calibration_json() const;
   // K4A_DEPTH_DELAY_NS of the recording, in microseconds (depth frames are that much later).
   int64_t depth_delay_us() const;
+  // K4A_START_OFFSET_NS in microseconds: a frame's device timestamp is its recording timestamp
+  // plus this.
+  int64_t start_offset_us() const;
 
   // The next capture in time order; nothing at the end of the recording.
   std::optional<AzureCapture> Next();

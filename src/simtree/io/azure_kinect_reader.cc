@@ -59,7 +59,7 @@ const MkvStream* RequireTrack(const std::vector<MkvStream>& streams, const std::
   return s;
 }
 
-int64_t ParseDelayUs(const std::string& tag) {
+int64_t ParseNanosecondsAsUs(const std::string& tag) {
   if (tag.empty()) return 0;
   try {
     return std::stoll(tag) / 1000;
@@ -85,6 +85,7 @@ struct AzureKinectReader::Impl {
   AzureCalibration calibration;
   std::string calibration_json;
   int64_t depth_delay_us = 0;
+  int64_t start_offset_us = 0;
   const MkvStream* color = nullptr;
   const MkvStream* depth = nullptr;
   const MkvStream* ir = nullptr;
@@ -115,7 +116,8 @@ struct AzureKinectReader::Impl {
       if (s) selected.push_back(s->index);
     }
     demuxer.Select(selected);
-    depth_delay_us = ParseDelayUs(demuxer.Tag("K4A_DEPTH_DELAY_NS"));
+    depth_delay_us = ParseNanosecondsAsUs(demuxer.Tag("K4A_DEPTH_DELAY_NS"));
+    start_offset_us = ParseNanosecondsAsUs(demuxer.Tag("K4A_START_OFFSET_NS"));
     pairer =
         std::make_unique<azure_detail::CapturePairer>(options.pair_tolerance_us, depth_delay_us);
   }
@@ -194,6 +196,7 @@ const std::vector<AzureTrack>& AzureKinectReader::tracks() const { return impl_-
 const AzureCalibration& AzureKinectReader::calibration() const { return impl_->calibration; }
 const std::string& AzureKinectReader::calibration_json() const { return impl_->calibration_json; }
 int64_t AzureKinectReader::depth_delay_us() const { return impl_->depth_delay_us; }
+int64_t AzureKinectReader::start_offset_us() const { return impl_->start_offset_us; }
 const AzureReadStats& AzureKinectReader::stats() const { return impl_->stats; }
 
 const AzureTrack* AzureKinectReader::FindTrack(const std::string& name) const {
