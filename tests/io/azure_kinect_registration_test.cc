@@ -156,5 +156,56 @@ TEST(AzureRegistration, UndistortingAnImageTheLensBentGivesItBack) {
   EXPECT_LT(error / n, 1.5);
 }
 
+TEST(AzureRegistration, ColourInDepthSamplesWhereTheLensModelSendsEachPoint) {
+  const AzureCalibration cal = RealCalibration();
+  const AzureRegistration reg(cal);
+  auto pattern = [](double u, double v) {
+    return 128 + 100 * std::sin(u / 25.0) * std::cos(v / 30.0);
+  };
+  RgbImage color(cal.color.width, cal.color.height);
+  for (int v = 0; v < color.height; ++v) {
+    for (int u = 0; u < color.width; ++u) {
+      for (int c = 0; c < 3; ++c)
+        color.at(u, v, c) = static_cast<uint8_t>(std::lround(pattern(u, v)));
+    }
+  }
+  const DepthImage depth = PlaneDepth(cal, 1.2);
+  const RgbImage got = reg.ColorInDepth(color, depth);
+  double error = 0;
+  int n = 0;
+  for (int v = 0; v < depth.height; v += 3) {
+    for (int u = 0; u < depth.width; u += 3) {
+      if (depth.at(u, v) == 0 || got.at(u, v, 0) == 0) continue;
+      const Eigen::Vector2d ray = *cal.depth.PixelRay(u, v);
+      const Eigen::Vector3d p =
+          cal.depth_to_color.Apply(Eigen::Vector3d(ray.x(), ray.y(), 1) * (depth.at(u, v) * 0.001));
+      const Eigen::Vector2d px = *cal.color.Project(p);
+      error += std::abs(got.at(u, v, 0) - pattern(px.x(), px.y()));
+      ++n;
+    }
+  }
+  EXPECT_GT(n, 15000);
+  EXPECT_LT(error / n, 1.0);
+}
+
+TEST(AzureRegistration, ColourInDepthLeavesPointsTheColourCameraCannotSeeBlack) {
+  const AzureCalibration cal = RealCalibration();
+  const AzureRegistration reg(cal);
+  DepthImage depth(cal.depth.width, cal.depth.height, 2500);  // a wall
+  for (int v = 200; v < 300; ++v) {
+    for (int u = 250; u < 350; ++u) depth.at(u, v) = 600;  // a near box
+  }
+  const RgbImage color(cal.color.width, cal.color.height, 200);
+  const RgbImage got = reg.ColorInDepth(color, depth);
+  EXPECT_EQ(got.at(300, 250, 0), 200);  // the box
+  EXPECT_EQ(got.at(100, 250, 0), 200);  // the wall far from it
+  // The colour camera sits about 32 mm to the depth camera's -x: the wall just beside the box on
+  // one side is in the box's shadow for it.
+  int hidden = 0;
+  for (int u = 350; u < 400; ++u) hidden += got.at(u, 250, 0) == 0;
+  for (int u = 200; u < 250; ++u) hidden += got.at(u, 250, 0) == 0;
+  EXPECT_GT(hidden, 10);
+}
+
 }  // namespace
 }  // namespace simtree

@@ -234,6 +234,11 @@ class AzureRegistration {
   DepthImage RegisterDepth(const DepthImage& depth) const;
   // Both, as an RgbdImage of the pinhole colour camera.
   RgbdImage Apply(const RgbImage& color, const DepthImage& depth) const;
+  // The reverse: each depth pixel's colour (depth camera's size), sampled (bilinear) where its
+  // point projects into the distorted colour image; black where there is no depth, the point is
+  // outside the colour image, or the colour camera sees a nearer surface there (more than 2%
+  // nearer: the point is hidden from it).
+  RgbImage ColorInDepth(const RgbImage& color, const DepthImage& depth) const;
 
  private:
   AzureCalibration calibration_;

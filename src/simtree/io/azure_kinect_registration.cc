@@ -162,4 +162,50 @@ RgbdImage AzureRegistration::Apply(const RgbImage& color, const DepthImage& dept
   return out;
 }
 
+RgbImage AzureRegistration::ColorInDepth(const RgbImage& color, const DepthImage& depth) const {
+  const BrownConradyCamera& dc = calibration_.depth;
+  const BrownConradyCamera& cc = calibration_.color;
+  const Eigen::Vector3d& t = calibration_.depth_to_color.translation_m;
+  const DepthImage nearest = RegisterDepth(depth);  // what the colour camera sees, for occlusion
+  const int corner_w = dc.width + 1;
+  RgbImage out(dc.width, dc.height);
+  for (int v = 0; v < dc.height; ++v) {
+    for (int u = 0; u < dc.width; ++u) {
+      const uint16_t mm = depth.at(u, v);
+      if (mm == 0) continue;
+      // The pixel centre's ray: the mean of its corners' (exact to far below a pixel).
+      Eigen::Vector3d ray = Eigen::Vector3d::Zero();
+      for (int corner = 0; corner < 4; ++corner) {
+        const float* r =
+            &depth_rays_[(static_cast<size_t>(v + corner / 2) * corner_w + u + corner % 2) * 3];
+        ray += Eigen::Vector3d(r[0], r[1], r[2]) / 4;
+      }
+      if (!ray.allFinite()) continue;
+      const Eigen::Vector3d p = ray * (mm * 0.001) + t;
+      const Eigen::Vector2d pin = pinhole_.Project(p);
+      const int pu = static_cast<int>(std::lround(pin.x()));
+      const int pv = static_cast<int>(std::lround(pin.y()));
+      if (pu < 0 || pv < 0 || pu >= pinhole_.width || pv >= pinhole_.height) continue;
+      const uint16_t seen = nearest.at(pu, pv);
+      if (seen != 0 && seen < p.z() * 1000 * 0.98) continue;  // hidden behind a nearer surface
+      const std::optional<Eigen::Vector2d> px = cc.Project(p);
+      if (!px || px->x() < 0 || px->y() < 0 || px->x() > cc.width - 1 || px->y() > cc.height - 1) {
+        continue;
+      }
+      const int x0 = std::min(static_cast<int>(px->x()), cc.width - 2);
+      const int y0 = std::min(static_cast<int>(px->y()), cc.height - 2);
+      const float ax = static_cast<float>(px->x() - x0);
+      const float ay = static_cast<float>(px->y() - y0);
+      for (int c = 0; c < 3; ++c) {
+        const float top =
+            color.at(x0, y0, c) + ax * (color.at(x0 + 1, y0, c) - color.at(x0, y0, c));
+        const float bottom =
+            color.at(x0, y0 + 1, c) + ax * (color.at(x0 + 1, y0 + 1, c) - color.at(x0, y0 + 1, c));
+        out.at(u, v, c) = static_cast<uint8_t>(top + ay * (bottom - top) + 0.5f);
+      }
+    }
+  }
+  return out;
+}
+
 }  // namespace simtree
