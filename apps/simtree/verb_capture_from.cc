@@ -70,12 +70,15 @@ void RegisterCaptureFrom(CLI::App& app) {
                    "Keep only the first N pull captures (0: all)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  verb->footer(
-      Examples({"simtree capture-from north.mkv east.mkv south.mkv west.mkv --pull "
-                "pull.mkv --out capture/",
-                "simtree capture-from scans/*.mkv --out capture/   # scans only",
-                "then write capture/pull/markers.json and capture/pull/init.json and run "
-                "`simtree run capture/ --out result/`"}));
+  verb->add_flag("--check", args->options.write_check_images,
+                 "Also write check/<view>.png and check/pull_first.png: colour blended with "
+                 "depth, and colour with depth edges in green (they must follow the outlines)");
+  verb->footer(Examples(
+      {"simtree capture-from north.mkv east.mkv south.mkv west.mkv --pull "
+       "pull.mkv --out capture/",
+       "simtree capture-from scans/*.mkv --out capture/ --check   # scans only, check images",
+       "then write capture/pull/markers.json and capture/pull/init.json and run "
+       "`simtree run capture/ --out result/`"}));
   verb->callback([args] {
     std::vector<fs::path> inputs(args->scans.begin(), args->scans.end());
     for (const fs::path& p : inputs) args->options.scans.push_back(p);

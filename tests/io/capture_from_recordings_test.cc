@@ -15,11 +15,14 @@
 namespace simtree {
 namespace {
 
+namespace fs = std::filesystem;
+
 TEST(CaptureFromRecordings, TheRealRecordingBecomesAViewAndAPullStream) {
   const auto recording = test::SharedData("azure-kinect/pyk4a_recording.mkv");
   CaptureFromOptions options;
   options.scans = {recording};
   options.pull = recording;
+  options.write_check_images = true;
   const auto root = test::TempDir() / "capture";
   const CaptureFromResult result = CaptureFromRecordings(options, root);
   ASSERT_EQ(result.views.size(), 1u);
@@ -46,6 +49,11 @@ TEST(CaptureFromRecordings, TheRealRecordingBecomesAViewAndAPullStream) {
   std::nth_element(valid.begin(), valid.begin() + valid.size() / 2, valid.end());
   EXPECT_GT(valid[valid.size() / 2], 300);
   EXPECT_LT(valid[valid.size() / 2], 4000);
+  // The check pictures: two half-size panels.
+  const RgbImage check = ReadColorImage(root / "check" / "view_00.png");
+  EXPECT_EQ(check.width, 1280);
+  EXPECT_EQ(check.height, 360);
+  EXPECT_TRUE(fs::exists(root / "check" / "pull_first.png"));
   const RgbdImage frame = LoadPullFrame(*capture.pull, 0);
   EXPECT_EQ(frame.depth, view.depth);
   EXPECT_EQ(capture.pull->intrinsics, view.intrinsics);

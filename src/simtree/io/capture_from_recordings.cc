@@ -12,6 +12,7 @@
 #include "simtree/core/error.h"
 #include "simtree/core/option_checks.h"
 #include "simtree/core/progress.h"
+#include "simtree/io/detail/registration_overlay.h"
 #include "simtree/io/detail/still_frame.h"
 
 namespace simtree {
@@ -75,6 +76,12 @@ ScanViewPick ScoreScan(const fs::path& recording, const CaptureFromOptions& opti
   return pick;
 }
 
+void WriteCheckImage(const RgbdImage& rgbd, const fs::path& capture_root, const std::string& name) {
+  fs::create_directories(capture_root / "check");
+  WritePng(azure_detail::RegistrationOverlay(rgbd.color, rgbd.depth),
+           capture_root / "check" / (name + ".png"));
+}
+
 // Pass 2: the chosen capture, registered, written as scans/<view>/.
 void WriteScan(const ScanViewPick& pick, const CaptureFromOptions& options,
                const fs::path& capture_root) {
@@ -82,7 +89,9 @@ void WriteScan(const ScanViewPick& pick, const CaptureFromOptions& options,
   while (std::optional<AzureCapture> c = reader.Next()) {
     if (c->index != pick.capture) continue;
     const AzureRegistration registration(reader.calibration(), options.registration);
-    WriteScanView(capture_root, pick.view, registration.Apply(*c->color, *c->depth), options.png);
+    const RgbdImage rgbd = registration.Apply(*c->color, *c->depth);
+    WriteScanView(capture_root, pick.view, rgbd, options.png);
+    if (options.write_check_images) WriteCheckImage(rgbd, capture_root, pick.view);
     return;
   }
   throw InputError(pick.recording.string(), fmt::format("capture {}", pick.capture),
@@ -129,6 +138,9 @@ void WritePull(const fs::path& recording, const CaptureFromOptions& options,
     }
     if (first_us < 0) first_us = c->timestamp_us;
     const RgbdImage rgbd = registration.Apply(*c->color, *c->depth);
+    if (frames.empty() && options.write_check_images) {
+      WriteCheckImage(rgbd, capture_root, "pull_first");
+    }
     const double time_s = static_cast<double>(c->timestamp_us - first_us) * 1e-6;
     frames.push_back(WritePullFrame(pull, numbering.Next(c->timestamp_us), time_s, rgbd.color,
                                     rgbd.depth, options.png));

@@ -30,6 +30,10 @@ struct CaptureFromOptions {
   // recording's 25th percentile of motion.
   double still_motion_grey = 1.0;
   int max_pull_frames = 0;  // 0: every capture
+  // Also write check/<view>.png and check/pull_first.png: colour with depth blended in and with
+  // depth edges drawn, to see by eye that depth sits on the colour (io/detail/
+  // registration_overlay.h). Not part of the capture.
+  bool write_check_images = false;
   AzureReaderOptions reader;
   AzureRegistrationOptions registration;
   PngOptions png;
