@@ -22,7 +22,8 @@ int main(int argc, char** argv) {
       "simtree: a real tree from one consumer RGB-D camera, as a simulation-ready tree "
       "(branch hierarchy of generalized cylinders with measured natural frequencies and damping "
       "ratios).\n\n"
-      "Pipeline: synth | scans -> preprocess -> register -> reconstruct -> static tree\n"
+      "Pipeline: capture-from (Azure Kinect .mkv) | synth -> capture folder\n"
+      "          scans -> preprocess -> register -> reconstruct -> static tree\n"
       "          pull-test stream -> track -> identify -> materials\n"
       "          static tree + materials -> build -> simulate / view / render\n"
       "          run: all of it on a capture folder; demo: synth + run + eval",
@@ -41,6 +42,7 @@ int main(int argc, char** argv) {
   app.fallthrough();
 
   using namespace simtree::cli;
+  RegisterCaptureFrom(app);
   RegisterSynth(app);
   RegisterPreprocess(app);
   RegisterRegister(app);
@@ -58,7 +60,6 @@ int main(int argc, char** argv) {
   RegisterConvert(app);
   RegisterMesh(app);
   RegisterInfo(app);
-  RegisterCaptureFrom(app);
 
   std::unique_ptr<oneapi::tbb::global_control> thread_limit;
   app.parse_complete_callback([&] {
