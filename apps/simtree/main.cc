@@ -43,6 +43,7 @@ int main(int argc, char** argv) {
 
   using namespace simtree::cli;
   RegisterCaptureFrom(app);
+  RegisterCaptureExport(app);
   RegisterSynth(app);
   RegisterPreprocess(app);
   RegisterRegister(app);

@@ -25,5 +25,6 @@ void RegisterConvert(CLI::App& app);
 void RegisterMesh(CLI::App& app);
 void RegisterInfo(CLI::App& app);
 void RegisterCaptureFrom(CLI::App& app);
+void RegisterCaptureExport(CLI::App& app);
 
 }  // namespace simtree::cli

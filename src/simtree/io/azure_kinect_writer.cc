@@ -175,6 +175,7 @@ struct AzureKinectWriter::Impl {
   }
 
   void Open() {
+    av_log_set_level(AV_LOG_FATAL);  // as the reader: libav's warnings are noise, errors are ours
     temporary = target;
     temporary += ".partial";
     if (avformat_alloc_output_context2(&format, nullptr, "matroska", temporary.c_str()) < 0) {
