@@ -32,6 +32,10 @@ void LogResult(const CaptureFromResult& r, const std::string& output) {
         "depth skipped; dropped by the camera: {} colour, {} depth",
         r.pull_frames, r.pull_duration_s, s.frame_rate_hz, r.pull_skipped, s.dropped_color,
         s.dropped_depth);
+    if (r.pull_time_snap_max_s > 0) {
+      spdlog::info("pull: times snapped to a regular grid, moved by at most {:.2f} ms",
+                   r.pull_time_snap_max_s * 1e3);
+    }
     spdlog::info(
         "now write {0}/pull/markers.json (the tape markers and their links) and "
         "{0}/pull/init.json (each marker's pixel in the first frame): docs/formats.md",
@@ -70,6 +74,10 @@ void RegisterCaptureFrom(CLI::App& app) {
                    "Keep only the first N pull captures (0: all)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  verb->add_flag("--snap-times", args->options.snap_pull_times,
+                 "Put pull frame k at k x the mean frame period: for recordings with millisecond "
+                 "timestamps (written by libav, e.g. capture-export), whose 33/34 ms steps "
+                 "identify refuses");
   verb->add_flag("--check", args->options.write_check_images,
                  "Also write check/<view>.png and check/pull_first.png: colour blended with "
                  "depth, and colour with depth edges in green (they must follow the outlines)");

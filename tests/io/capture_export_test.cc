@@ -67,7 +67,9 @@ TEST(CaptureExport, ACaptureComesBackThroughRecordings) {
   CaptureFromOptions options;
   options.scans = exported.scans;
   options.pull = exported.pull;
-  CaptureFromRecordings(options, dir / "back");
+  options.snap_pull_times = true;  // the export keeps milliseconds: 0, 33, 67 ms
+  const CaptureFromResult result = CaptureFromRecordings(options, dir / "back");
+  EXPECT_NEAR(result.pull_time_snap_max_s, 0.0005, 1e-9);  // 33 ms -> 33.5 ms
 
   const Capture back = OpenCapture(dir / "back");
   const RgbdImage view = LoadScanView(back.views[0]);
@@ -95,7 +97,7 @@ TEST(CaptureExport, ACaptureComesBackThroughRecordings) {
   EXPECT_GT(static_cast<double>(covered) / compared, 0.999);
   EXPECT_EQ(far_off, 0);
   ASSERT_EQ(back.pull->frames.size(), 3u);
-  for (int i = 0; i < 3; ++i) EXPECT_NEAR(back.pull->frames[i].time_s, i / 30.0, 1e-3);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(back.pull->frames[i].time_s, i * 0.0335, 1e-6);
 }
 
 TEST(CaptureExport, AColourCameraOfNoModesShapeIsRefused) {

@@ -118,6 +118,20 @@ class FrameNumbering {
   int64_t frame_ = 0;
 };
 
+// Frame k at k x the mean period (frame numbers count dropped captures); the largest move.
+double SnapTimes(std::vector<PullFrame>& frames) {
+  const int steps = frames.back().frame - frames.front().frame;
+  if (steps <= 0) return 0.0;
+  const double period = (frames.back().time_s - frames.front().time_s) / steps;
+  double moved = 0;
+  for (PullFrame& f : frames) {
+    const double snapped = (f.frame - frames.front().frame) * period;
+    moved = std::max(moved, std::abs(snapped - f.time_s));
+    f.time_s = snapped;
+  }
+  return moved;
+}
+
 void WritePull(const fs::path& recording, const CaptureFromOptions& options,
                const fs::path& capture_root, CaptureFromResult& result) {
   AzureKinectReader reader(recording, options.reader);
@@ -151,6 +165,7 @@ void WritePull(const fs::path& recording, const CaptureFromOptions& options,
     throw InputError(recording.string(), "",
                      "expected pull-test captures with both colour and depth, found none");
   }
+  if (options.snap_pull_times) result.pull_time_snap_max_s = SnapTimes(frames);
   WriteFramesCsv(frames, pull / "frames.csv");
   result.pull_frames = static_cast<int>(frames.size());
   result.pull_duration_s = frames.back().time_s;

@@ -30,6 +30,10 @@ struct CaptureFromOptions {
   // recording's 25th percentile of motion.
   double still_motion_grey = 1.0;
   int max_pull_frames = 0;  // 0: every capture
+  // Put each pull frame at frame number x the stream's mean period instead of its recorded time.
+  // For recordings with millisecond timestamps (those libav writes, e.g. capture-export's): their
+  // 33/34 ms steps are no regular grid, which identify requires. k4arecorder's are microseconds.
+  bool snap_pull_times = false;
   // Also write check/<view>.png and check/pull_first.png: colour with depth blended in and with
   // depth edges drawn, to see by eye that depth sits on the colour (io/detail/
   // registration_overlay.h). Not part of the capture.
@@ -57,8 +61,9 @@ struct CaptureFromResult {
   int pull_frames = 0;
   int pull_skipped = 0;  // pull captures without colour or depth (the camera dropped one)
   double pull_duration_s = 0;
-  AzureReadStats pull_stats;  // of the pull recording
-  std::string sensor;         // capture.json's sensor: "azure_kinect_nfov_unbinned", ...
+  double pull_time_snap_max_s = 0;  // the largest move snap_pull_times made
+  AzureReadStats pull_stats;        // of the pull recording
+  std::string sensor;               // capture.json's sensor: "azure_kinect_nfov_unbinned", ...
 };
 
 // Writes capture.json, scans/ and pull/ into `capture_root` (a staging folder: the caller
