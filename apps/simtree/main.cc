@@ -22,7 +22,8 @@ int main(int argc, char** argv) {
       "simtree: a real tree from one consumer RGB-D camera, as a simulation-ready tree "
       "(branch hierarchy of generalized cylinders with measured natural frequencies and damping "
       "ratios).\n\n"
-      "Pipeline: synth | scans -> preprocess -> register -> reconstruct -> static tree\n"
+      "Pipeline: capture-from (Azure Kinect .mkv) | synth -> capture folder\n"
+      "          scans -> preprocess -> register -> reconstruct -> static tree\n"
       "          pull-test stream -> track -> identify -> materials\n"
       "          static tree + materials -> build -> simulate / view / render\n"
       "          run: all of it on a capture folder; demo: synth + run + eval",
@@ -41,6 +42,8 @@ int main(int argc, char** argv) {
   app.fallthrough();
 
   using namespace simtree::cli;
+  RegisterCaptureFrom(app);
+  RegisterCaptureExport(app);
   RegisterSynth(app);
   RegisterPreprocess(app);
   RegisterRegister(app);

@@ -24,5 +24,7 @@ void RegisterReport(CLI::App& app);
 void RegisterConvert(CLI::App& app);
 void RegisterMesh(CLI::App& app);
 void RegisterInfo(CLI::App& app);
+void RegisterCaptureFrom(CLI::App& app);
+void RegisterCaptureExport(CLI::App& app);
 
 }  // namespace simtree::cli
