@@ -96,6 +96,8 @@ TEST(CheckInputs, BadCapturesFailBeforeAnyWorkNamingWhatIsMissing) {
   fs::remove(root / "no_markers" / "pull" / "markers.json");
   EXPECT_TRUE(
       Contains(ErrorOf([&] { CheckInputs(root / "no_markers", root / "r", o); }), "markers.json"));
+  EXPECT_TRUE(
+      Contains(ErrorOf([&] { CheckInputs(root / "no_markers", root / "r", o); }), "capture-from"));
 
   EXPECT_TRUE(Contains(ErrorOf([&] { CheckInputs(root / "ok", root / "ok", o); }), "capture"));
   EXPECT_TRUE(

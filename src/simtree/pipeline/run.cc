@@ -159,7 +159,9 @@ void CheckInputs(const fs::path& capture, const fs::path& result, const RunOptio
   }
   if (!fs::exists(capture / "pull" / "markers.json")) {
     throw InputError(capture.string(), "pull/markers.json",
-                     "expected the tape markers and their links (simtree.markers), found none");
+                     "expected the tape markers and their links (simtree.markers), found none; "
+                     "a capture made by `simtree capture-from` needs it written by hand "
+                     "(docs/formats.md)");
   }
   if (!options.tracks.empty() && !fs::is_regular_file(options.tracks)) {
     throw InputError(options.tracks.string(), "", "expected a trajectories.csv file (--tracks)");
@@ -167,7 +169,9 @@ void CheckInputs(const fs::path& capture, const fs::path& result, const RunOptio
   if (options.tracks.empty() && !fs::is_regular_file(capture / "pull" / "init.json")) {
     throw InputError(capture.string(), "pull/init.json",
                      "expected the markers' first-frame pixels to start tracking from "
-                     "(simtree.track_init), found none; or give the trajectories with --tracks");
+                     "(simtree.track_init), found none (written by hand for a capture from "
+                     "`simtree capture-from`, docs/formats.md); or give the trajectories with "
+                     "--tracks");
   }
 }
 
