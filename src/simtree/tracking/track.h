@@ -48,8 +48,8 @@ struct TrackOptions {
   // The tape colour: "auto" (red, its hue and saturation fitted to the init pixels), "red",
   // "green", "blue", "yellow", "orange" or "#rrggbb" (a hue fitted around that colour).
   std::string color = "auto";
-  // Half-size of the square searched around a marker's prediction (px, at 640 px image width;
-  // scaled with the image width).
+  // Half-size of the square searched around a marker's prediction (px for a focal length of
+  // 434 px, synth's 640 x 576 depth camera; scaled with the stream's focal length, fx / 434).
   double search_radius_px = 18.0;
   // Half-size searched around a lost marker's last and rest positions (px, same scaling).
   double reacquire_radius_px = 40.0;

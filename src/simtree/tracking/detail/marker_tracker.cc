@@ -13,7 +13,8 @@ constexpr double kForbidden = std::numeric_limits<double>::infinity();
 // A detection this much weaker than the marker's fully visible tape is partly hidden: its box
 // comes from the band's remembered size instead.
 constexpr double kPartialWeight = 0.7;
-// Blobs this close (px at 640 px width) at one depth may be pieces of one tape.
+// Blobs this close (px at the reference focal length, Scale()) at one depth may be pieces of one
+// tape.
 constexpr double kFragmentPx = 8.0;
 // A blob this much nearer another marker's predicted pixel (and compatible with its depth)
 // belongs to that marker (see OwnedByAnother); in the first frame, where two clicks may lie a
