@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <vector>
 
+#include <fmt/format.h>
 #include <Eigen/Core>
 
 #include "simtree/io/capture.h"
@@ -96,7 +97,7 @@ inline TrackInit WriteDrawnStream(const DrawnStream& s, const std::filesystem::p
   std::vector<MarkerLink> links;
   for (size_t m = 0; m < s.positions[0].size(); ++m) {
     links.push_back(MarkerLink{.id = static_cast<int>(m),
-                               .label = "m" + std::to_string(m),
+                               .label = fmt::format("m{}", m),
                                .parent = m == 0 ? -1 : 0,
                                .branch = std::nullopt});
   }
