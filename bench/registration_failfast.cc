@@ -10,9 +10,7 @@
 //   registration_failfast --captures scene1/ --span 3 --markdown t.md
 
 #include <algorithm>
-#include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -28,24 +26,19 @@
 #include "simtree/io/ground_truth.h"
 #include "simtree/preprocessing/preprocess.h"
 #include "simtree/registration/register.h"
-#include "simtree/synth/synth.h"
+#include "synth_capture_set.h"
 
 namespace fs = std::filesystem;
 using namespace simtree;
 
 namespace {
 
-struct BenchArgs {
-  std::vector<std::string> species = {"acer_palmatum", "magnolia", "acer_rubrum"};
-  int seeds = 2, first_seed = 1;
-  int views = 6;
-  int span = 0;  // 0: every pair
-  std::vector<std::string> captures;
-  fs::path cache = fs::temp_directory_path() / "simtree_registration_bench";
+struct BenchArgs : bench::CaptureSetArgs {
+  BenchArgs() { views = 6; }
+  int span = 0;                   // 0: every pair
   std::optional<double> decline;  // PairOptions::decline_below_overlap (default: the library's)
   std::optional<double> budget;   // PairOptions::max_pair_seconds
   std::optional<double> chain;    // MultiViewOptions::chained_decline_factor
-  std::string markdown_path, json_path;
   std::vector<std::string> only;  // "source:target" pairs to run (empty: all)
   bool near_half = false;         // each view keeps the half of the tree facing its camera
   bool multiview = false;         // the pairs as RegisterViews runs them (all at once)
@@ -60,24 +53,6 @@ struct PairRow {
   eval::PoseError first_error;   // of the first attempt's result
   double capture_seconds = 0.0;  // --multiview: RegisterViews' time, on the capture's first row
 };
-
-// The capture in the cache, made by synth when missing; the pull stream is as short as allowed
-// (only the scans are used: 4.5 s, 2 frames a second).
-fs::path SynthCapture(const BenchArgs& args, const std::string& species, uint64_t seed) {
-  const fs::path dir = args.cache / fmt::format("{}_seed{}_views{}", species, seed, args.views);
-  if (!fs::exists(dir / "gt" / "scan_poses.json")) {
-    synth::SynthOptions options;
-    options.species = species;
-    options.seed = seed;
-    options.views = args.views;
-    options.duration_s = 4.5;
-    options.fps = 2.0;
-    options.contact_sheet = false;
-    fmt::print(stderr, "synth {} seed {} -> {}\n", species, seed, dir.string());
-    synth::RunSynth(options, dir);
-  }
-  return dir;
-}
 
 // Keeps the points on the camera's side of the vertical plane through the trunk (synth stands
 // the tree's base at the world origin, Z up): a view that sees only the near half of the tree,
@@ -166,16 +141,6 @@ std::vector<PairRow> RunCapture(const BenchArgs& args, const fs::path& root,
   return rows;
 }
 
-double Median(std::vector<double> v) {
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-}
-
-double Largest(const std::vector<double>& v) {
-  return v.empty() ? NAN : *std::max_element(v.begin(), v.end());
-}
-
 std::string Markdown(const std::vector<PairRow>& rows) {
   std::string md =
       "| capture | pair | apart (deg) | outcome | error (deg / mm) | first overlap | kept "
@@ -210,8 +175,8 @@ std::string Markdown(const std::vector<PairRow>& rows) {
       "\n{} pairs: {} trusted ({} wrong), median {:.2f} s, largest {:.2f} s; {} declined, median "
       "{:.2f} s, largest {:.2f} s. {} trusted pairs were found by a retry, their first attempts "
       "overlapping {}.\n",
-      rows.size(), trusted, trusted_wrong, Median(trusted_s), Largest(trusted_s), declined,
-      Median(declined_s), Largest(declined_s), rescued,
+      rows.size(), trusted, trusted_wrong, bench::Median(trusted_s), bench::Largest(trusted_s),
+      declined, bench::Median(declined_s), bench::Largest(declined_s), rescued,
       rescued_first.empty() ? "-" : fmt::format("{:.2f}", fmt::join(rescued_first, ", ")));
   return md;
 }
@@ -265,15 +230,9 @@ nlohmann::ordered_json Json(const std::vector<PairRow>& rows) {
 int main(int argc, char** argv) {
   CLI::App app{"Time per pair of views (declined pairs apart), against synth captures' truth"};
   BenchArgs args;
-  app.add_option("--species", args.species, "Species presets to synthesise")->capture_default_str();
-  app.add_option("--seeds", args.seeds, "Seeds per species, from --first-seed")
-      ->capture_default_str();
-  app.add_option("--first-seed", args.first_seed, "First seed")->capture_default_str();
+  args.AddOptions(app);
   app.add_option("--views", args.views, "Scan views per synthetic capture")->capture_default_str();
   app.add_option("--span", args.span, "Pair each view with this many next ones (0: every pair)")
-      ->capture_default_str();
-  app.add_option("--captures", args.captures, "Capture folders with gt/ instead");
-  app.add_option("--cache", args.cache, "Where synthetic captures are kept between runs")
       ->capture_default_str();
   app.add_option("--decline", args.decline, "PairOptions::decline_below_overlap (0: never)");
   app.add_option("--budget", args.budget, "PairOptions::max_pair_seconds (0: no limit)");
@@ -284,29 +243,13 @@ int main(int argc, char** argv) {
                "The pairs as RegisterViews runs them, all at once (times under each other's load)");
   app.add_option("--pairs", args.only, "Only these pairs, as source:target view names");
   app.add_option("--chain", args.chain, "MultiViewOptions::chained_decline_factor (0: never)");
-  app.add_option("--markdown", args.markdown_path, "The table as markdown");
-  app.add_option("--json", args.json_path, "Every pair as JSON");
   CLI11_PARSE(app, argc, argv);
   open3d::utility::SetVerbosityLevel(open3d::utility::VerbosityLevel::Error);
 
   std::vector<PairRow> rows;
-  auto add = [&](std::vector<PairRow> more) {
-    for (PairRow& r : more) rows.push_back(std::move(r));
-  };
-  if (!args.captures.empty()) {
-    for (const std::string& c : args.captures) add(RunCapture(args, c, c));
-  } else {
-    for (const std::string& species : args.species) {
-      for (int s = 0; s < args.seeds; ++s) {
-        const uint64_t seed = args.first_seed + s;
-        add(RunCapture(args, SynthCapture(args, species, seed),
-                       fmt::format("{} seed {}", species, seed)));
-      }
-    }
+  for (const bench::CaptureEntry& capture : bench::ResolveCaptures(args)) {
+    for (PairRow& r : RunCapture(args, capture.root, capture.label)) rows.push_back(std::move(r));
   }
-  const std::string md = Markdown(rows);
-  fmt::print("{}", md);
-  if (!args.markdown_path.empty()) std::ofstream(args.markdown_path) << md;
-  if (!args.json_path.empty()) std::ofstream(args.json_path) << Json(rows).dump(1) << "\n";
+  bench::WriteOutputs(args, Markdown(rows), Json(rows));
   return 0;
 }

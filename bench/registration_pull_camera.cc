@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -28,20 +27,12 @@
 #include "simtree/preprocessing/preprocess.h"
 #include "simtree/registration/register.h"
 #include "simtree/registration/register_extra_view.h"
-#include "simtree/synth/synth.h"
+#include "synth_capture_set.h"
 
 namespace fs = std::filesystem;
 using namespace simtree;
 
 namespace {
-
-struct BenchArgs {
-  std::vector<std::string> species = {"acer_palmatum", "magnolia", "acer_rubrum"};
-  int seeds = 3, first_seed = 1;
-  std::vector<std::string> captures;
-  fs::path cache = fs::temp_directory_path() / "simtree_registration_bench";
-  std::string markdown_path, json_path;
-};
 
 // One capture's outcome.
 struct Outcome {
@@ -54,23 +45,6 @@ struct Outcome {
   double tree_rms_m = NAN;          // the tree points the pull camera sees, displaced
   double seconds = 0.0;             // preprocessing, views registered, pull frame registered
 };
-
-// The capture in the cache, made by `simtree synth` when missing. Only the pull stream's first
-// frame is used, so the stream is as short and sparse as synth allows (4.5 s, 2 frames a second).
-fs::path SynthCapture(const BenchArgs& args, const std::string& species, uint64_t seed) {
-  const fs::path dir = args.cache / fmt::format("{}_seed{}_fps2", species, seed);
-  if (!fs::exists(dir / "gt" / "pull_camera.json")) {
-    synth::SynthOptions options;
-    options.species = species;
-    options.seed = seed;
-    options.duration_s = 4.5;
-    options.fps = 2.0;
-    options.contact_sheet = false;
-    fmt::print(stderr, "synth {} seed {} -> {}\n", species, seed, dir.string());
-    synth::RunSynth(options, dir);
-  }
-  return dir;
-}
 
 // The estimated pose against the truth, relative to a registered scan view.
 void Score(const fs::path& root, const registration::MultiViewResult& result, Outcome& o) {
@@ -142,19 +116,11 @@ std::string Markdown(const std::vector<Outcome>& outcomes) {
     position.push_back(1e3 * o.position_error_m);
     tree.push_back(1e3 * o.tree_rms_m);
   }
-  auto median = [](std::vector<double> v) -> double {
-    if (v.empty()) return NAN;
-    std::sort(v.begin(), v.end());
-    return v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
-  };
-  auto largest = [](const std::vector<double>& v) -> double {
-    return v.empty() ? NAN : *std::max_element(v.begin(), v.end());
-  };
   md += fmt::format(
       "\nPlaced: {} of {}. Rotation error median {:.2f} deg, largest {:.2f}; camera position "
       "{:.0f} mm, largest {:.0f}; tree RMS {:.1f} mm, largest {:.1f}.\n",
-      rotation.size(), outcomes.size(), median(rotation), largest(rotation), median(position),
-      largest(position), median(tree), largest(tree));
+      rotation.size(), outcomes.size(), bench::Median(rotation), bench::Largest(rotation),
+      bench::Median(position), bench::Largest(position), bench::Median(tree), bench::Largest(tree));
   return md;
 }
 
@@ -184,34 +150,16 @@ nlohmann::ordered_json Json(const std::vector<Outcome>& outcomes) {
 
 int main(int argc, char** argv) {
   CLI::App app{"The pull camera in the registration frame, against the truth of synth captures"};
-  BenchArgs args;
-  app.add_option("--species", args.species, "Species presets to synthesise")->capture_default_str();
-  app.add_option("--seeds", args.seeds, "Seeds per species, from --first-seed")
-      ->capture_default_str();
-  app.add_option("--first-seed", args.first_seed, "First seed")->capture_default_str();
-  app.add_option("--captures", args.captures, "Capture folders with gt/ instead");
-  app.add_option("--cache", args.cache, "Where synthetic captures are kept between runs")
-      ->capture_default_str();
-  app.add_option("--markdown", args.markdown_path, "The table as markdown");
-  app.add_option("--json", args.json_path, "Every capture's outcome as JSON");
+  bench::CaptureSetArgs args;
+  args.seeds = 3;
+  args.AddOptions(app);
   CLI11_PARSE(app, argc, argv);
   open3d::utility::SetVerbosityLevel(open3d::utility::VerbosityLevel::Error);
 
   std::vector<Outcome> outcomes;
-  if (!args.captures.empty()) {
-    for (const std::string& c : args.captures) outcomes.push_back(RunCapture(c, c));
-  } else {
-    for (const std::string& species : args.species) {
-      for (int s = 0; s < args.seeds; ++s) {
-        const uint64_t seed = args.first_seed + s;
-        outcomes.push_back(RunCapture(SynthCapture(args, species, seed),
-                                      fmt::format("{} seed {}", species, seed)));
-      }
-    }
+  for (const bench::CaptureEntry& capture : bench::ResolveCaptures(args)) {
+    outcomes.push_back(RunCapture(capture.root, capture.label));
   }
-  const std::string md = Markdown(outcomes);
-  fmt::print("{}", md);
-  if (!args.markdown_path.empty()) std::ofstream(args.markdown_path) << md;
-  if (!args.json_path.empty()) std::ofstream(args.json_path) << Json(outcomes).dump(1) << "\n";
+  bench::WriteOutputs(args, Markdown(outcomes), Json(outcomes));
   return 0;
 }
