@@ -66,7 +66,8 @@ void RegisterCaptureFrom(CLI::App& app) {
       "capture-from",
       "RGB-D recordings to a capture folder: each scan recording becomes a view (its sharpest "
       "still capture), the pull recording pull/ (the recording's timestamps). A recording is an "
-      "Azure Kinect .mkv (k4arecorder; colour undistorted, depth registered into it), a TUM "
+      "Azure Kinect .mkv (k4arecorder; colour undistorted, depth registered into it), a "
+      "RealSense .bag (depth aligned to colour), a TUM "
       "RGB-D folder (rgb.txt, depth.txt; give the camera) or an Open3D folder (color/, depth/, "
       "intrinsic.json). pull/markers.json and pull/init.json are yours to write afterwards "
       "(docs/formats.md)");
@@ -75,10 +76,10 @@ void RegisterCaptureFrom(CLI::App& app) {
   verb->add_option("--pull", args->pull, "The pull test's recording (a fixed camera)")
       ->check(CLI::ExistingPath);
   verb->add_option("--layout", args->layout,
-                   "Every recording's layout: auto (from the path: .mkv, a folder with rgb.txt, "
-                   "a folder with depth/ and intrinsic.json), mkv, tum, open3d")
+                   "Every recording's layout: auto (from the path: .mkv, .bag, a folder with "
+                   "rgb.txt, a folder with depth/ and intrinsic.json), mkv, bag, tum, open3d")
       ->capture_default_str()
-      ->check(CLI::IsMember({"auto", "mkv", "tum", "open3d"}));
+      ->check(CLI::IsMember({"auto", "mkv", "bag", "tum", "open3d"}));
   verb->add_option("--intrinsics", args->intrinsics,
                    "Camera of TUM or Open3D recordings: simtree's intrinsics.json or Open3D's "
                    "PinholeCameraIntrinsic JSON (TUM's lists carry none; replaces an Open3D "
@@ -89,11 +90,11 @@ void RegisterCaptureFrom(CLI::App& app) {
                    "tum-fr1, tum-fr2 (both keep their lens distortion), tum-fr3, tum-default")
       ->check(CLI::IsMember(TumCameraNames()));
   verb->add_option("--depth-scale", args->depth_scale,
-                   "Depth units per metre of TUM or Open3D depth images (default: TUM 5000, "
-                   "Open3D 1000); written as millimetres")
+                   "Depth units per metre of TUM, Open3D or .bag depth images (default: TUM 5000, "
+                   "Open3D 1000, a .bag's Depth Units option); written as millimetres")
       ->check(CLI::PositiveNumber);
   verb->add_option("--max-time-difference", args->options.sequence.max_time_difference_s,
-                   "TUM: pair colour and depth frames at most this many seconds apart")
+                   "TUM, .bag: pair colour and depth frames at most this many seconds apart")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
   verb->add_option("--fps", args->options.sequence.fps,
@@ -126,6 +127,8 @@ void RegisterCaptureFrom(CLI::App& app) {
        "--out capture/   # a TUM RGB-D sequence as the pull stream",
        "simtree capture-from north/ east/ south/ --pull pull/ --out capture/   # Open3D folders "
        "(color/, depth/, intrinsic.json)",
+       "simtree capture-from --pull pull.bag --out capture/   # a RealSense recording, depth "
+       "aligned to colour",
        "simtree capture-from seq_a/ --intrinsics k.json --depth-scale 1000 --layout tum --out "
        "capture/",
        "then write capture/pull/markers.json and capture/pull/init.json and run "

@@ -7,6 +7,7 @@
 #include "simtree/core/error.h"
 #include "simtree/core/option_checks.h"
 #include "simtree/io/open3d_folder.h"
+#include "simtree/io/realsense_bag.h"
 #include "simtree/io/tum_rgbd.h"
 
 namespace simtree {
@@ -16,10 +17,9 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr std::pair<RecordingLayout, const char*> kNames[] = {
-    {RecordingLayout::kAuto, "auto"},
-    {RecordingLayout::kAzureMkv, "mkv"},
-    {RecordingLayout::kTumRgbd, "tum"},
-    {RecordingLayout::kOpen3dFolder, "open3d"},
+    {RecordingLayout::kAuto, "auto"},        {RecordingLayout::kAzureMkv, "mkv"},
+    {RecordingLayout::kTumRgbd, "tum"},      {RecordingLayout::kOpen3dFolder, "open3d"},
+    {RecordingLayout::kRealSenseBag, "bag"},
 };
 
 }  // namespace
@@ -35,7 +35,8 @@ RecordingLayout ParseLayout(const std::string& name) {
   for (const auto& [value, n] : kNames) {
     if (name == n) return value;
   }
-  throw OptionError("layout", fmt::format("expected auto, mkv, tum or open3d, got \"{}\"", name));
+  throw OptionError("layout",
+                    fmt::format("expected auto, mkv, bag, tum or open3d, got \"{}\"", name));
 }
 
 RecordingLayout DetectLayout(const fs::path& path) {
@@ -47,10 +48,12 @@ RecordingLayout DetectLayout(const fs::path& path) {
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return std::tolower(c); });
     if (ext == ".mkv") return RecordingLayout::kAzureMkv;
+    if (IsRosBagFile(path)) return RecordingLayout::kRealSenseBag;
   }
-  throw InputError(path.string(), "",
-                   "expected a recording: an Azure Kinect .mkv, a TUM RGB-D folder (rgb.txt, "
-                   "depth.txt) or an Open3D folder (color/, depth/, intrinsic.json)");
+  throw InputError(
+      path.string(), "",
+      "expected a recording: an Azure Kinect .mkv, a RealSense .bag, a TUM RGB-D folder (rgb.txt, "
+      "depth.txt) or an Open3D folder (color/, depth/, intrinsic.json)");
 }
 
 void RgbdSequenceOptions::Validate() const {
@@ -78,6 +81,16 @@ std::unique_ptr<RgbdSequence> OpenRgbdSequence(const fs::path& path, RecordingLa
       open3d.depth_scale = options.depth_units_per_m.value_or(open3d.depth_scale);
       open3d.fps = options.fps;
       return OpenOpen3dFolder(path, open3d);
+    }
+    case RecordingLayout::kRealSenseBag: {
+      RealSenseBagOptions bag;
+      if (options.intrinsics) {
+        throw InputError(path.string(), "intrinsics",
+                         "a .bag carries its camera; expected no intrinsics to be given");
+      }
+      bag.depth_units_per_m = options.depth_units_per_m;
+      bag.max_time_difference_s = options.max_time_difference_s;
+      return OpenRealSenseBag(path, bag);
     }
     default:
       throw InputError(

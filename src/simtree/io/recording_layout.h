@@ -13,20 +13,20 @@
 
 namespace simtree {
 
-enum class RecordingLayout { kAuto, kAzureMkv, kTumRgbd, kOpen3dFolder };
+enum class RecordingLayout { kAuto, kAzureMkv, kTumRgbd, kOpen3dFolder, kRealSenseBag };
 
-// "auto", "mkv", "tum", "open3d".
+// "auto", "mkv", "tum", "open3d", "bag".
 std::string LayoutName(RecordingLayout layout);
 // Throws OptionError for an unknown name.
 RecordingLayout ParseLayout(const std::string& name);
 // The layout of `path`; throws InputError saying what each layout looks like when none fits.
 RecordingLayout DetectLayout(const std::filesystem::path& path);
 
-// How to open a TUM or Open3D recording; unset values take the layout's own.
+// How to open a TUM, Open3D or RealSense recording; unset values take the layout's own.
 struct RgbdSequenceOptions {
   std::optional<CameraIntrinsics> intrinsics;  // required for TUM; overrides Open3D's file
-  std::optional<double> depth_units_per_m;     // TUM 5000, Open3D 1000
-  double max_time_difference_s = 0.02;         // TUM colour-depth pairing tolerance
+  std::optional<double> depth_units_per_m;     // TUM 5000, Open3D 1000, a bag's Depth Units
+  double max_time_difference_s = 0.02;         // TUM and bag colour-depth pairing tolerance
   double fps = 30;                             // Open3D folders have no times
   void Validate() const;
 };
