@@ -122,6 +122,16 @@ TEST(LasIo, AppliesScaleAndOffsetInEveryVersionAndFormat) {
   }
 }
 
+TEST(LasIo, A14FileWithOnlyTheLegacyCountIsRead) {
+  LasSpec spec;
+  spec.minor = 4;
+  std::string bytes = LasBytes(spec, kPoints);
+  std::memset(bytes.data() + 247, 0, 8);  // the 64-bit count left empty
+  const fs::path path = test::TempDir() / "legacy.las";
+  test::WriteText(path, bytes);
+  EXPECT_EQ(ReadLas(path).points_.size(), 2u);
+}
+
 TEST(LasIo, SixteenBitColourAndTheCloudReaderFront) {
   const fs::path dir = test::TempDir();
   LasSpec spec;

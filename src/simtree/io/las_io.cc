@@ -122,7 +122,8 @@ Header ReadHeader(std::ifstream& in, const fs::path& path, uint64_t file_size) {
                                  min_header, h.minor, file_size, h.header_size));
   }
   h.points = At<uint32_t>(b.data(), 107);
-  if (h.minor >= 4) h.points = At<uint64_t>(b.data(), 247);
+  // 1.4 counts in 64 bits; a writer that filled only the legacy field (formats 0-5) is read too.
+  if (h.minor >= 4 && At<uint64_t>(b.data(), 247) > 0) h.points = At<uint64_t>(b.data(), 247);
   for (int k = 0; k < 3; ++k) {
     h.scale[k] = At<double>(b.data(), 131 + 8 * k);
     h.offset[k] = At<double>(b.data(), 155 + 8 * k);
