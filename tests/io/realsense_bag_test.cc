@@ -1,7 +1,7 @@
 // RealSense .bag files (ROS bag 2.0) written by the test's own writer (below, after the ROS wiki's
-// record layout): records in an uncompressed chunk, colour and depth sensor_msgs/Image topics
-// with their sensor_msgs/CameraInfo and the Depth Units option; pairing by header stamp, depth
-// units, pixel placement, and the bags simtree refuses.
+// record layout): records in a chunk (uncompressed, lz4, bz2), colour and depth sensor_msgs/Image
+// topics with their sensor_msgs/CameraInfo and the Depth Units option; pairing by header stamp,
+// depth units, pixel placement, and the bags simtree refuses.
 
 #include <cstring>
 #include <string>
@@ -10,7 +10,15 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#ifdef SIMTREE_HAVE_LZ4
+#include <lz4frame.h>
+#endif
+#ifdef SIMTREE_HAVE_BZ2
+#include <bzlib.h>
+#endif
+
 #include "simtree/io/capture_from_recordings.h"
+#include "simtree/io/detail/ros_bag.h"
 #include "simtree/io/realsense_bag.h"
 #include "simtree/io/recording_layout.h"
 #include "test_util.h"
@@ -119,6 +127,30 @@ struct BagSpec {
   int depth_width = kWidth;
 };
 
+// The chunk's data as `compression` stores it ("broken": bytes no decompressor accepts).
+std::string Compress(const std::string& data, const std::string& compression) {
+#ifdef SIMTREE_HAVE_LZ4
+  if (compression == "lz4") {
+    std::string out(LZ4F_compressFrameBound(data.size(), nullptr), '\0');
+    out.resize(LZ4F_compressFrame(out.data(), out.size(), data.data(), data.size(), nullptr));
+    return out;
+  }
+#endif
+#ifdef SIMTREE_HAVE_BZ2
+  if (compression == "bz2") {
+    std::string in = data;
+    unsigned int length = static_cast<unsigned int>(data.size() + data.size() / 100 + 600);
+    std::string out(length, '\0');
+    BZ2_bzBuffToBuffCompress(out.data(), &length, in.data(), static_cast<unsigned int>(in.size()),
+                             9, 0, 0);
+    out.resize(length);
+    return out;
+  }
+#endif
+  if (compression == "broken") return std::string(data.size() / 2, 'x');
+  return data;
+}
+
 std::string BagBytes(const BagSpec& spec) {
   std::string chunk;
   chunk += Connection(0, "/device_0/sensor_1/Color_0/image/data", "sensor_msgs/Image");
@@ -138,9 +170,10 @@ std::string BagBytes(const BagSpec& spec) {
   bag += Record(Field("op", "\x03") + Field("index_pos", Bin(uint64_t{0})) +
                     Field("conn_count", Bin(uint32_t{5})) + Field("chunk_count", Bin(uint32_t{1})),
                 std::string(64, ' '));
-  bag += Record(Field("op", "\x05") + Field("compression", spec.compression) +
+  const std::string compression = spec.compression == "broken" ? "bz2" : spec.compression;
+  bag += Record(Field("op", "\x05") + Field("compression", compression) +
                     Field("size", Bin(static_cast<uint32_t>(chunk.size()))),
-                chunk);
+                Compress(chunk, spec.compression));
   // The index section repeats the connections after the chunks.
   bag += Connection(0, "/device_0/sensor_1/Color_0/image/data", "sensor_msgs/Image");
   return bag;
@@ -187,12 +220,38 @@ TEST(RealSenseBag, BecomesThePullStream) {
   EXPECT_EQ(LoadPullFrame(*capture.pull, 0).depth.at(1, 0), 101);
 }
 
+TEST(RealSenseBag, CompressedChunksReadLikePlainOnes) {
+  const fs::path tmp = test::TempDir();
+  const RgbdImage plain = OpenRealSenseBag(WriteBag(tmp / "plain.bag"), {})->Load(1);
+  for (const std::string compression : {"lz4", "bz2"}) {
+    SCOPED_TRACE(compression);
+    if (!io_detail::RosCompressionSupported(compression)) {
+      GTEST_SKIP() << "built without " << compression;
+    }
+    BagSpec spec;
+    spec.compression = compression;
+    const fs::path bag = WriteBag(tmp / (compression + ".bag"), spec);
+    EXPECT_LT(fs::file_size(bag), fs::file_size(tmp / "plain.bag"));  // really compressed
+    const auto seq = OpenRealSenseBag(bag, {});
+    ASSERT_EQ(seq->size(), 2u);
+    const RgbdImage frame = seq->Load(1);
+    EXPECT_EQ(frame.color, plain.color);
+    EXPECT_EQ(frame.depth, plain.depth);
+  }
+}
+
 TEST(RealSenseBag, RefusedBagsSayWhy) {
   const fs::path tmp = test::TempDir();
-  BagSpec bz2;
-  bz2.compression = "bz2";
-  EXPECT_THAT(test::ErrorOf([&] { OpenRealSenseBag(WriteBag(tmp / "bz2.bag", bz2), {}); }),
-              HasSubstr("a chunk compressed with bz2 is not read"));
+  BagSpec zstd;
+  zstd.compression = "zstd";
+  EXPECT_THAT(test::ErrorOf([&] { OpenRealSenseBag(WriteBag(tmp / "zstd.bag", zstd), {}); }),
+              HasSubstr("a chunk compressed with zstd is not read by this build"));
+  if (io_detail::RosCompressionSupported("bz2")) {
+    BagSpec broken;
+    broken.compression = "broken";
+    EXPECT_THAT(test::ErrorOf([&] { OpenRealSenseBag(WriteBag(tmp / "broken.bag", broken), {}); }),
+                HasSubstr("the bz2 chunk at byte"));
+  }
   BagSpec unaligned;
   unaligned.depth_fx = 11;
   EXPECT_THAT(test::ErrorOf([&] { OpenRealSenseBag(WriteBag(tmp / "raw.bag", unaligned), {}); }),

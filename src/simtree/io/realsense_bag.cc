@@ -96,11 +96,13 @@ struct Stream {
 
 class BagSequence : public RgbdSequence {
  public:
-  BagSequence(fs::path path, CameraIntrinsics intrinsics, double units_per_m,
-              std::vector<std::pair<RosMessageRef, RosMessageRef>> frames,
+  BagSequence(fs::path path, std::unique_ptr<RosBagIndex> index, CameraIntrinsics intrinsics,
+              double units_per_m, std::vector<std::pair<RosMessageRef, RosMessageRef>> frames,
               std::vector<double> times)
       : path_(std::move(path)),
         source_(path_.string()),
+        index_(std::move(index)),
+        reader_(path_, *index_),
         intrinsics_(intrinsics),
         units_per_m_(units_per_m),
         frames_(std::move(frames)),
@@ -147,9 +149,8 @@ class BagSequence : public RgbdSequence {
 
  private:
   RosImage Message(const RosMessageRef& ref, const char* what) const {
-    std::ifstream in(path_, std::ios::binary);
     const std::string where = fmt::format("{}: {} image at byte {}", source_, what, ref.offset);
-    return ParseImage(io_detail::ReadRosMessage(in, ref, path_), where);
+    return ParseImage(reader_.Read(ref), where);
   }
   void Check(const RosImage& raw, int bytes_per_pixel, const char* what) const {
     if (static_cast<int>(raw.width) != intrinsics_.width ||
@@ -164,6 +165,8 @@ class BagSequence : public RgbdSequence {
   }
   fs::path path_;
   std::string source_;
+  std::unique_ptr<RosBagIndex> index_;
+  mutable io_detail::RosBagReader reader_;  // keeps the last decompressed chunk
   CameraIntrinsics intrinsics_;
   double units_per_m_;
   std::vector<std::pair<RosMessageRef, RosMessageRef>> frames_;
@@ -172,7 +175,7 @@ class BagSequence : public RgbdSequence {
 
 // Every image topic with its first message's encoding; messages sorted by header stamp, repeated
 // stamps dropped.
-std::vector<Stream> ImageStreams(const RosBagIndex& index, std::ifstream& in,
+std::vector<Stream> ImageStreams(const RosBagIndex& index, io_detail::RosBagReader& reader,
                                  const fs::path& path) {
   std::vector<Stream> streams;
   for (const RosConnection& c : index.connections) {
@@ -183,9 +186,7 @@ std::vector<Stream> ImageStreams(const RosBagIndex& index, std::ifstream& in,
     for (const RosMessageRef& m : index.messages) {
       if (m.connection != c.id) continue;
       // The header comes first: read only it.
-      RosMessageRef head = m;
-      head.size = std::min<uint32_t>(m.size, 4096);
-      const std::string bytes = io_detail::ReadRosMessage(in, head, path);
+      const std::string bytes = reader.Read(m, 4096);
       RosReader r(bytes, path.string() + ": " + c.topic);
       const double stamp = ReadStamp(r);
       if (s.encoding.empty()) {
@@ -209,7 +210,7 @@ std::vector<Stream> ImageStreams(const RosBagIndex& index, std::ifstream& in,
 
 // The camera info topic sharing the longest topic prefix with `image_topic`.
 std::optional<CameraIntrinsics> CameraOf(const std::string& image_topic, const RosBagIndex& index,
-                                         std::ifstream& in, const fs::path& path) {
+                                         io_detail::RosBagReader& reader, const fs::path& path) {
   const RosConnection* best = nullptr;
   size_t best_prefix = 0;
   for (const RosConnection& c : index.connections) {
@@ -223,22 +224,21 @@ std::optional<CameraIntrinsics> CameraOf(const std::string& image_topic, const R
   if (!best) return std::nullopt;
   for (const RosMessageRef& m : index.messages) {
     if (m.connection == best->id) {
-      return ParseCameraInfo(io_detail::ReadRosMessage(in, m, path),
-                             path.string() + ": " + best->topic);
+      return ParseCameraInfo(reader.Read(m), path.string() + ": " + best->topic);
     }
   }
   return std::nullopt;
 }
 
 // The "Depth Units" option (std_msgs/Float32, metres per unit) when the bag has one.
-std::optional<double> DepthUnitsPerMetre(const RosBagIndex& index, std::ifstream& in,
-                                         const fs::path& path) {
+std::optional<double> DepthUnitsPerMetre(const RosBagIndex& index,
+                                         io_detail::RosBagReader& reader) {
   for (const RosConnection& c : index.connections) {
     if (c.topic.find("Depth Units") == std::string::npos || c.type != "std_msgs/Float32") continue;
     for (const RosMessageRef& m : index.messages) {
       if (m.connection != c.id || m.size < 4) continue;
       float metres;
-      const std::string bytes = io_detail::ReadRosMessage(in, m, path);
+      const std::string bytes = reader.Read(m);
       std::memcpy(&metres, bytes.data(), 4);
       if (metres > 0 && std::isfinite(metres)) return 1.0 / metres;
     }
@@ -263,8 +263,9 @@ bool IsRosBagFile(const fs::path& path) {
 std::unique_ptr<RgbdSequence> OpenRealSenseBag(const fs::path& path,
                                                const RealSenseBagOptions& options) {
   options.Validate();
-  const RosBagIndex index = io_detail::IndexRosBag(path);
-  std::ifstream in(path, std::ios::binary);
+  auto owned_index = std::make_unique<RosBagIndex>(io_detail::IndexRosBag(path));
+  const RosBagIndex& index = *owned_index;
+  io_detail::RosBagReader in(path, index);
   const std::vector<Stream> streams = ImageStreams(index, in, path);
   const Stream* color = nullptr;
   const Stream* depth = nullptr;
@@ -317,15 +318,15 @@ std::unique_ptr<RgbdSequence> OpenRealSenseBag(const fs::path& path,
     frames.emplace_back(color->messages[i], depth->messages[j]);
     times.push_back(color->stamps_s[i]);
   }
-  const double units = options.depth_units_per_m
-                           ? *options.depth_units_per_m
-                           : DepthUnitsPerMetre(index, in, path).value_or(1000.0);
+  const double units = options.depth_units_per_m ? *options.depth_units_per_m
+                                                 : DepthUnitsPerMetre(index, in).value_or(1000.0);
   spdlog::info(
       "{}: colour {} ({}), depth {} ({}): {} of {} colour frames paired; {} depth units "
       "per metre",
       path.string(), color->connection->topic, color->encoding, depth->connection->topic,
       depth->encoding, frames.size(), color->messages.size(), units);
-  return std::make_unique<BagSequence>(path, *k_color, units, std::move(frames), std::move(times));
+  return std::make_unique<BagSequence>(path, std::move(owned_index), *k_color, units,
+                                       std::move(frames), std::move(times));
 }
 
 }  // namespace simtree

@@ -4,7 +4,8 @@
 // info (sensor_msgs/CameraInfo) and the depth units option. Colour and depth are paired by their
 // header stamps within a tolerance. The depth must already be registered to the colour (same size
 // and camera, as an aligned recording is): depth in the depth camera's own view is refused, not
-// reprojected. Chunks compressed with bz2 or lz4 are refused.
+// reprojected. Chunks compressed with lz4 or bz2 are read when simtree was built with liblz4 /
+// libbz2 (src/simtree/io/CMakeLists.txt finds them), refused with a message otherwise.
 //
 //   const std::unique_ptr<RgbdSequence> seq = OpenRealSenseBag("pull.bag", {});
 
@@ -26,7 +27,8 @@ struct RealSenseBagOptions {
 bool IsRosBagFile(const std::filesystem::path& path);
 
 // Throws InputError naming the file (and topic or byte) when it is not a ROS bag 2.0, has no
-// colour or depth image topic or no camera info, an unsupported encoding, compressed chunks,
+// colour or depth image topic or no camera info, an unsupported encoding, chunks it cannot
+// decompress,
 // depth not registered to colour, or no colour-depth pair within the tolerance.
 std::unique_ptr<RgbdSequence> OpenRealSenseBag(const std::filesystem::path& path,
                                                const RealSenseBagOptions& options);
