@@ -54,9 +54,11 @@ TEST(PointCloudIo, BadFilesAreClearErrors) {
   EXPECT_THAT(ErrorOf(dir / "empty.ply"), HasSubstr("the file is empty"));
   test::WriteText(dir / "junk.ply", "ply\nformat ascii 1.0\nelement vertex 10\n");
   EXPECT_THAT(ErrorOf(dir / "junk.ply"), HasSubstr("junk.ply"));
-  EXPECT_THAT(ErrorOf(dir / "c.las"), HasSubstr("no such file"));
+  EXPECT_THAT(ErrorOf(dir / "c.e57"), HasSubstr("no such file"));
+  test::WriteText(dir / "c.e57", "x");
+  EXPECT_THAT(ErrorOf(dir / "c.e57"), HasSubstr("expected a point cloud ending in"));
   test::WriteText(dir / "c.las", "x");
-  EXPECT_THAT(ErrorOf(dir / "c.las"), HasSubstr("expected a point cloud ending in"));
+  EXPECT_THAT(ErrorOf(dir / "c.las"), HasSubstr("c.las: expected a LAS header"));
 }
 
 TEST(PointCloudIo, PlyRoundTrip) {

@@ -173,6 +173,99 @@ void WritePull(const fs::path& recording, const CaptureFromOptions& options,
   if (result.sensor.empty()) result.sensor = SensorName(reader);
 }
 
+// Another layout's recording, pass 1: the sharpest still frame, scored as a .mkv's captures.
+ScanViewPick ScoreSequenceScan(const fs::path& recording, const RgbdSequence& sequence,
+                               const CaptureFromOptions& options) {
+  std::vector<double> sharpness, motion_to_previous;
+  std::optional<SmallGrey> previous;
+  Progress progress("score " + recording.filename().string(), static_cast<int64_t>(sequence.size()),
+                    "frames");
+  for (size_t i = 0; i < sequence.size(); ++i) {
+    const RgbImage color = sequence.LoadColor(i);
+    SmallGrey grey = azure_detail::Shrink(color);
+    motion_to_previous.push_back(previous ? azure_detail::Motion(*previous, grey) : -1.0);
+    previous = std::move(grey);
+    sharpness.push_back(azure_detail::Sharpness(color));
+    progress.Advance();
+  }
+  progress.Done();
+  const size_t n = sharpness.size();
+  std::vector<double> motion(n, 0.0);
+  for (size_t i = 0; i < n; ++i) {
+    motion[i] = std::max(0.0, motion_to_previous[i]);
+    if (i + 1 < n) motion[i] = std::max(motion[i], motion_to_previous[i + 1]);
+  }
+  ScanViewPick pick;
+  pick.recording = recording;
+  pick.candidates = static_cast<int>(n);
+  const int best =
+      azure_detail::PickStill(sharpness, motion, options.still_motion_grey, &pick.still);
+  pick.capture = best;
+  pick.timestamp_us = std::llround((sequence.time_s(best) - sequence.time_s(0)) * 1e6);
+  pick.sharpness = sharpness[best];
+  pick.motion_grey = motion[best];
+  return pick;
+}
+
+// Another layout's recording as pull/: every frame, its time from the first; frame numbers follow
+// the times as for a .mkv.
+void WriteSequencePull(const fs::path& recording, const RgbdSequence& sequence,
+                       const CaptureFromOptions& options, const fs::path& capture_root,
+                       CaptureFromResult& result) {
+  const fs::path pull = capture_root / "pull";
+  fs::create_directories(pull);
+  WriteIntrinsicsJson(sequence.intrinsics(), pull / "intrinsics.json");
+  std::vector<PullFrame> frames;
+  FrameNumbering numbering;
+  size_t count = sequence.size();
+  if (options.max_pull_frames > 0) count = std::min<size_t>(count, options.max_pull_frames);
+  Progress progress("pull " + recording.filename().string(), static_cast<int64_t>(count), "frames");
+  for (size_t i = 0; i < count; ++i) {
+    const RgbdImage rgbd = sequence.Load(i);
+    if (i == 0 && options.write_check_images) WriteCheckImage(rgbd, capture_root, "pull_first");
+    const double time_s = sequence.time_s(i) - sequence.time_s(0);
+    frames.push_back(WritePullFrame(pull, numbering.Next(std::llround(time_s * 1e6)), time_s,
+                                    rgbd.color, rgbd.depth, options.png));
+    progress.Advance();
+  }
+  progress.Done();
+  if (options.snap_pull_times) result.pull_time_snap_max_s = SnapTimes(frames);
+  WriteFramesCsv(frames, pull / "frames.csv");
+  result.pull_frames = static_cast<int>(frames.size());
+  result.pull_duration_s = frames.back().time_s;
+  result.pull_stats.captures = static_cast<int>(count);
+  result.pull_stats.color_frames = result.pull_stats.depth_frames = static_cast<int>(count);
+  if (frames.size() > 1 && frames.back().frame > 0) {
+    result.pull_stats.frame_rate_hz = frames.back().frame / frames.back().time_s;
+  }
+  if (result.sensor.empty()) result.sensor = sequence.sensor();
+}
+
+RecordingLayout LayoutOf(const fs::path& recording, const CaptureFromOptions& options) {
+  return options.layout == RecordingLayout::kAuto ? DetectLayout(recording) : options.layout;
+}
+
+// One scan view from a recording of any layout.
+ScanViewPick WriteView(const fs::path& recording, const std::string& view,
+                       const CaptureFromOptions& options, const fs::path& capture_root,
+                       CaptureFromResult& result) {
+  if (LayoutOf(recording, options) == RecordingLayout::kAzureMkv) {
+    ScanViewPick pick = ScoreScan(recording, options);
+    pick.view = view;
+    WriteScan(pick, options, capture_root);
+    if (result.sensor.empty()) result.sensor = SensorName(AzureKinectReader(pick.recording));
+    return pick;
+  }
+  const auto sequence = OpenRgbdSequence(recording, options.layout, options.sequence);
+  ScanViewPick pick = ScoreSequenceScan(recording, *sequence, options);
+  pick.view = view;
+  const RgbdImage rgbd = sequence->Load(pick.capture);
+  WriteScanView(capture_root, view, rgbd, options.png);
+  if (options.write_check_images) WriteCheckImage(rgbd, capture_root, view);
+  if (result.sensor.empty()) result.sensor = sequence->sensor();
+  return pick;
+}
+
 }  // namespace
 
 void CaptureFromOptions::Validate() const {
@@ -184,6 +277,7 @@ void CaptureFromOptions::Validate() const {
               "expected colour and depth to be read");
   reader.Validate();
   registration.Validate();
+  CheckNested("sequence", sequence);
 }
 
 CaptureFromResult CaptureFromRecordings(const CaptureFromOptions& options,
@@ -192,17 +286,22 @@ CaptureFromResult CaptureFromRecordings(const CaptureFromOptions& options,
   CaptureFromResult result;
   fs::create_directories(capture_root);
   for (size_t i = 0; i < options.scans.size(); ++i) {
-    ScanViewPick pick = ScoreScan(options.scans[i], options);
-    pick.view = fmt::format("view_{:02d}", i);
-    WriteScan(pick, options, capture_root);
-    if (result.sensor.empty()) result.sensor = SensorName(AzureKinectReader(pick.recording));
-    result.views.push_back(pick);
+    result.views.push_back(
+        WriteView(options.scans[i], fmt::format("view_{:02d}", i), options, capture_root, result));
   }
-  if (options.pull) WritePull(*options.pull, options, capture_root, result);
+  if (options.pull) {
+    result.pull_layout = LayoutOf(*options.pull, options);
+    if (result.pull_layout == RecordingLayout::kAzureMkv) {
+      WritePull(*options.pull, options, capture_root, result);
+    } else {
+      const auto sequence = OpenRgbdSequence(*options.pull, options.layout, options.sequence);
+      WriteSequencePull(*options.pull, *sequence, options, capture_root, result);
+    }
+  }
   CaptureInfo info;
   info.sensor = result.sensor;
   info.notes =
-      "converted from Azure Kinect recordings by simtree capture-from; pull/markers.json "
+      "converted from recordings by simtree capture-from; pull/markers.json "
       "and pull/init.json are the user's to write";
   WriteCaptureInfo(info, capture_root / "capture.json");
   return result;

@@ -1,8 +1,10 @@
 #pragma once
-// A capture folder (docs/formats.md, "Capture folder") from Azure Kinect recordings: each scan
-// recording becomes scans/view_XX/ (its sharpest still capture), the pull recording becomes pull/
-// (every capture, colour undistorted to a pinhole camera and depth registered into it,
-// frames.csv with the recording's timestamps). markers.json and init.json stay the user's.
+// A capture folder (docs/formats.md, "Capture folder") from recordings: each scan recording
+// becomes scans/view_XX/ (its sharpest still capture), the pull recording becomes pull/ (every
+// capture, frames.csv with the recording's timestamps). markers.json and init.json stay the
+// user's. A recording is an Azure Kinect .mkv (colour undistorted to a pinhole camera and depth
+// registered into it), a TUM RGB-D folder or an Open3D folder (io/recording_layout.h; their
+// colour and depth are registered already), each input's layout detected from its path.
 //
 //   CaptureFromOptions options;
 //   options.scans = {"north.mkv", "east.mkv"};
@@ -19,6 +21,7 @@
 
 #include "simtree/io/azure_kinect.h"
 #include "simtree/io/image_io.h"
+#include "simtree/io/recording_layout.h"
 
 namespace simtree {
 
@@ -38,8 +41,11 @@ struct CaptureFromOptions {
   // depth edges drawn, to see by eye that depth sits on the colour (io/detail/
   // registration_overlay.h). Not part of the capture.
   bool write_check_images = false;
+  // Every input's layout; kAuto detects each one's from its path.
+  RecordingLayout layout = RecordingLayout::kAuto;
   AzureReaderOptions reader;
   AzureRegistrationOptions registration;
+  RgbdSequenceOptions sequence;  // TUM and Open3D inputs
   PngOptions png;
   void Validate() const;
 };
@@ -62,8 +68,9 @@ struct CaptureFromResult {
   int pull_skipped = 0;  // pull captures without colour or depth (the camera dropped one)
   double pull_duration_s = 0;
   double pull_time_snap_max_s = 0;  // the largest move snap_pull_times made
-  AzureReadStats pull_stats;        // of the pull recording
-  std::string sensor;               // capture.json's sensor: "azure_kinect_nfov_unbinned", ...
+  AzureReadStats pull_stats;  // of the pull recording (.mkv; of another layout: captures and rate)
+  RecordingLayout pull_layout = RecordingLayout::kAuto;  // the pull recording's, when there is one
+  std::string sensor;  // capture.json's sensor: "azure_kinect_nfov_unbinned", "tum_rgbd", ...
 };
 
 // Writes capture.json, scans/ and pull/ into `capture_root` (a staging folder: the caller

@@ -11,6 +11,7 @@
 
 #include "simtree/core/atomic_file.h"
 #include "simtree/core/error.h"
+#include "simtree/io/las_io.h"
 
 namespace fs = std::filesystem;
 
@@ -86,6 +87,11 @@ open3d::geometry::PointCloud ReadTextCloud(const fs::path& path, PointCloudReadR
 
 }  // namespace
 
+bool IsPointCloudFile(const fs::path& path) {
+  const std::string ext = Lower(path.extension().string());
+  return IsText(ext) || ext == ".ply" || ext == ".pcd" || ext == ".las" || ext == ".laz";
+}
+
 open3d::geometry::PointCloud ReadPointCloud(const fs::path& path, PointCloudReadReport* report) {
   PointCloudReadReport local;
   PointCloudReadReport& r = report ? *report : local;
@@ -119,10 +125,13 @@ open3d::geometry::PointCloud ReadPointCloud(const fs::path& path, PointCloudRead
     if (keep.size() != before) cloud = *cloud.SelectByIndex(keep);
     r.points = cloud.points_.size();
     r.dropped_non_finite = before - r.points;
+  } else if (ext == ".las" || ext == ".laz") {
+    cloud = ReadLas(path);
+    r.points = cloud.points_.size();
   } else {
     throw InputError(path.string(), "",
-                     fmt::format("expected a point cloud ending in .xyz, .txt, .pts, .ply or .pcd, "
-                                 "got \"{}\"",
+                     fmt::format("expected a point cloud ending in .xyz, .txt, .pts, .ply, .pcd or "
+                                 ".las, got \"{}\"",
                                  ext));
   }
   if (r.dropped_non_finite > 0) {

@@ -113,13 +113,7 @@ std::vector<PreprocessedView> LoadViews(const fs::path& input, const PreprocessO
   } else {
     std::vector<fs::path> files;
     for (const auto& entry : fs::directory_iterator(input)) {
-      std::string ext = entry.path().extension().string();
-      std::transform(ext.begin(), ext.end(), ext.begin(),
-                     [](unsigned char c) { return std::tolower(c); });
-      if (entry.is_regular_file() &&
-          (ext == ".ply" || ext == ".pcd" || ext == ".xyz" || ext == ".txt" || ext == ".pts")) {
-        files.push_back(entry.path());
-      }
+      if (entry.is_regular_file() && IsPointCloudFile(entry.path())) files.push_back(entry.path());
     }
     std::sort(files.begin(), files.end());
     views = PreprocessCloudFiles(files, cloud_up, preprocess);
