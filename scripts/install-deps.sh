@@ -13,6 +13,8 @@ packages=(
   libpcl-dev
   # images, video, tracking
   libopencv-dev libopencv-contrib-dev libavformat-dev libavcodec-dev libavutil-dev libswscale-dev
+  # RealSense .bag chunks (lz4, bz2)
+  liblz4-dev libbz2-dev
   ffmpeg
   # formats, CLI, logging
   nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev libtinygltf-dev

@@ -67,7 +67,7 @@ void RegisterPreprocess(CLI::App& app) {
       "III-A): ground plane removal, statistical outlier removal, voxel grid, the tree's cluster");
   verb->add_option("input", args->input,
                    "A capture folder (scans/view_XX/{color,depth}.png, intrinsics.json) or a "
-                   "folder of point-cloud files (.ply, .pcd, .xyz), one per view")
+                   "folder of point-cloud files (.ply, .pcd, .xyz, .las), one per view")
       ->required()
       ->check(CLI::ExistingDirectory);
   verb->add_option("-o,--out", args->output,

@@ -26,7 +26,9 @@ struct ReconstructArgs {
 };
 
 void AddReconstructOptions(CLI::App* verb, ReconstructArgs& args) {
-  verb->add_option("cloud", args.input, "Point cloud: .xyz/.txt/.pts (x y z per line), .ply, .pcd")
+  verb->add_option(
+          "cloud", args.input,
+          "Point cloud: .xyz/.txt/.pts (x y z per line), .ply, .pcd, .las (LAZ: decompress first)")
       ->required()
       ->check(CLI::ExistingFile);
   verb->add_option("-o,--out", args.output, "Tree to write: .json (simtree) or .txt (demo format)")

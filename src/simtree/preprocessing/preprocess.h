@@ -52,9 +52,9 @@ std::vector<PreprocessedView> PreprocessCloudFiles(const std::vector<std::filesy
 
 // The views of `input`, whichever it is: a folder written by `simtree preprocess`
 // (preprocess.json, read as it is), a capture folder (scans/, preprocessed now) or a folder of
-// point-cloud files (.ply, .pcd, .xyz, .txt, .pts, one view each in name order; `cloud_up` is up
-// in their frame when no ground is found). Throws InputError when it is none of these or holds no
-// view.
+// point-cloud files (.ply, .pcd, .xyz, .txt, .pts, .las, one view each in name order; `cloud_up` is
+// up in their frame when no ground is found). Throws InputError when it is none of these or holds
+// no view.
 std::vector<PreprocessedView> LoadViews(
     const std::filesystem::path& input, const PreprocessOptions& preprocess = {},
     const DepthToCloudOptions& depth = {},
