@@ -14,8 +14,10 @@
 #include "reconstruction/reconstruction_fixtures.h"
 #include "reconstruction/standin_scan.h"
 #include "simtree/core/error.h"
+#include "simtree/core/units.h"
 #include "simtree/core/validate.h"
 #include "simtree/eval/reconstruction_metrics.h"
+#include "simtree/reconstruction/detail/local_geometry.h"
 
 namespace simtree::reconstruction {
 namespace {
@@ -127,6 +129,38 @@ TEST(Reconstruct, ATallTreeGrowsFromTheFootOfItsTrunkNotFromItsCrown) {
   EXPECT_NEAR(r.trunk.cylinder.radius, 0.08, 0.08 * 0.1) << r.trunk.note;
   EXPECT_NEAR(r.tree.trunk().nodes.front().radius, 0.08, 0.08 * 0.15);
   EXPECT_LT(r.unreached_points, r.working_points / 20);
+}
+
+// A standing tree the MSAC fit finds hard: its trunk leans 20 degrees, flares to twice its radius
+// at the foot, and the scan starts 3 m up with no ground. The trunk is still measured within 10%
+// and the tree grows from its foot.
+TEST(Reconstruct, ALeaningFlaredTrunkWithoutGroundIsMeasured) {
+  const Eigen::Vector3d axis(std::sin(DegToRad(20)), 0, std::cos(DegToRad(20)));
+  const Eigen::Vector3d foot(1, 1, 3);
+  std::vector<Eigen::Vector3d> points = test::CylinderPoints(foot, axis, 2.5, 0.1, 0.015, 0.003, 1);
+  Eigen::Vector3d e1, e2;
+  PlaneBasis(axis, &e1, &e2);
+  for (double t = 0.0; t < 0.25; t += 0.015) {  // the flare, 0.2 m down to 0.1 m
+    const double r = 0.2 - 0.1 * t / 0.25;
+    for (double a = 0; a < kTwoPi; a += 0.015 / r) {
+      points.push_back(foot + t * axis + r * (std::cos(a) * e1 + std::sin(a) * e2));
+    }
+  }
+  const Eigen::Vector3d top = foot + 2.5 * axis;
+  for (int k = 0; k < 4; ++k) {
+    const double a = k * M_PI / 2;
+    const Eigen::Vector3d dir = Eigen::Vector3d(std::cos(a), std::sin(a), 1.2).normalized();
+    const auto limb = test::CylinderPoints(top, dir, 1.2, 0.04, 0.015, 0.002, 20 + k);
+    points.insert(points.end(), limb.begin(), limb.end());
+  }
+  const ReconstructionResult r = ReconstructTree(points, "leaning");
+  ASSERT_TRUE(r.trunk.found) << r.trunk.note;
+  EXPECT_NEAR(r.trunk.cylinder.radius, 0.1, 0.01) << r.trunk.note;
+  EXPECT_GT(std::abs(r.trunk.cylinder.axis.dot(axis)), std::cos(DegToRad(5))) << r.trunk.note;
+  EXPECT_NEAR(r.tree.trunk().nodes.front().radius, 0.1, 0.015);
+  EXPECT_LT(r.unreached_points, r.working_points / 20);
+  EXPECT_TRUE(FindProblems(r.tree).empty());
+  EXPECT_GE(r.tree.size(), 4);
 }
 
 TEST(Reconstruct, IsDeterministic) {
