@@ -181,7 +181,6 @@ TrunkFit FitTrunkFromSlices(std::span<const Eigen::Vector3d> points, double base
     fit.cylinder.point = point;
     fit.cylinder.axis = axis;
     fit.cylinder.radius = radius;
-    base = point + ((base_height - point.z()) / axis.z()) * axis;
     if (next_axis.dot(axis) > std::cos(DegToRad(1))) break;
     axis = next_axis;
     base = point + ((base_height - point.z()) / axis.z()) * axis;
