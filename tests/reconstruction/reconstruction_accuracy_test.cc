@@ -1,5 +1,8 @@
 // Long checks (label slow): stand-in Kinect scans of the authors' demo trees scored against them,
-// and the three real laser scans reconstructed into complete trees that fit their points.
+// and the five real laser scans reconstructed into complete trees that fit their points (the tall
+// ITSMe trees with their trunk base measured like TreeQSM's).
+
+#include <utility>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -54,7 +57,25 @@ TEST_P(RealScan, ReconstructsACompleteConnectedTreeThatFitsThePoints) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scans, RealScan,
-                         ::testing::Values("tree1.xyz", "tree7.xyz", "rtwig_cloud.xyz"));
+                         ::testing::Values("tree1.xyz", "tree7.xyz", "rtwig_cloud.xyz",
+                                           "itsme_tree1.xyz", "itsme_tree2.xyz"));
+
+// The tall ITSMe trees: the trunk's base radius within 15% of TreeQSM's (real-scans/README.md).
+class TallScan : public ::testing::TestWithParam<std::pair<const char*, double>> {};
+
+TEST_P(TallScan, MeasuresTheTrunkBaseLikeTreeQsm) {
+  const auto [name, treeqsm_base_radius] = GetParam();
+  const auto cloud = ReadPointCloud(test::SharedData(std::string("real-scans/") + name));
+  const ReconstructionResult r = ReconstructTree(cloud.points_, name);
+  ASSERT_TRUE(r.trunk.found) << r.trunk.note;
+  EXPECT_NEAR(r.tree.trunk().nodes.front().radius, treeqsm_base_radius, 0.15 * treeqsm_base_radius)
+      << r.trunk.note;
+}
+
+INSTANTIATE_TEST_SUITE_P(Itsme, TallScan,
+                         ::testing::Values(std::pair<const char*, double>{"itsme_tree1.xyz", 0.087},
+                                           std::pair<const char*, double>{"itsme_tree2.xyz",
+                                                                          0.156}));
 
 }  // namespace
 }  // namespace simtree::reconstruction

@@ -1,5 +1,7 @@
 #include "simtree/reconstruction/detail/skeleton_smoothing.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "reconstruction/reconstruction_fixtures.h"
@@ -23,6 +25,38 @@ TEST(SkeletonSmoothing, StraightensAZigzagAndKeepsEndsAndForks) {
   Skeleton off = before;
   SmoothSkeleton(off, {.iterations = 0});
   EXPECT_TRUE(off.nodes[3].position.isApprox(before.nodes[3].position));
+}
+
+// A branch bending through a quarter circle of 1 m radius, a node every 4.5 degrees.
+Skeleton Arc() {
+  Skeleton arc;
+  for (int i = 0; i <= 20; ++i) {
+    const double a = i * M_PI / 40;
+    SkeletonNode n;
+    n.position = {1.0 - std::cos(a), 0.0, std::sin(a)};
+    n.parent = i - 1;
+    arc.nodes.push_back(n);
+  }
+  return arc;
+}
+
+// Largest distance of a node from the arc it was sampled on.
+double OffTheArc(const Skeleton& s) {
+  double worst = 0.0;
+  for (const SkeletonNode& n : s.nodes) {
+    worst = std::max(worst, std::abs((n.position - Eigen::Vector3d(1, 0, 0)).norm() - 1.0));
+  }
+  return worst;
+}
+
+TEST(SkeletonSmoothing, KeepsABendWherePlainLaplacianSmoothingPullsItToItsChord) {
+  Skeleton taubin = Arc();
+  SmoothSkeleton(taubin, {});
+  Skeleton plain = Arc();
+  SmoothSkeleton(plain, {.inflate = 0.0});
+  EXPECT_LT(OffTheArc(taubin), 0.001);
+  EXPECT_GT(OffTheArc(plain), 3.0 * OffTheArc(taubin)) << OffTheArc(plain);
+  EXPECT_GT(taubin.TotalLength(), plain.TotalLength());
 }
 
 }  // namespace

@@ -143,19 +143,46 @@ struct TreeBase {
   double spread_m = 0.0;  // RMS horizontal distance of the roots from their centroid
 };
 
+// Connected pieces of the graph with its gap bridges: a tall tree whose upper trunk the scan
+// saw sparsely falls into pieces, the crown the largest, which the bridges join again.
+std::vector<int> BridgedPieces(const ScanGraph& graph) {
+  std::vector<int> label(graph.size(), -1);
+  std::vector<int> stack;
+  int next = 0;
+  for (int start = 0; start < graph.size(); ++start) {
+    if (label[start] >= 0) continue;
+    label[start] = next;
+    stack.assign(1, start);
+    while (!stack.empty()) {
+      const int i = stack.back();
+      stack.pop_back();
+      for (int k = graph.offsets[i]; k < graph.offsets[i + 1]; ++k) {
+        const int j = graph.targets[k];
+        if (label[j] < 0) {
+          label[j] = next;
+          stack.push_back(j);
+        }
+      }
+    }
+    ++next;
+  }
+  return label;
+}
+
 TreeBase FindBase(std::span<const Eigen::Vector3d> points, const ScanGraph& graph,
                   double band_width_m) {
+  const std::vector<int> piece = BridgedPieces(graph);
   std::vector<int> piece_size(points.size(), 0);
-  for (const int p : graph.piece) ++piece_size[p];
+  for (const int p : piece) ++piece_size[p];
   const int main_piece =
       static_cast<int>(std::max_element(piece_size.begin(), piece_size.end()) - piece_size.begin());
   TreeBase base;
   base.z = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < points.size(); ++i) {
-    if (graph.piece[i] == main_piece) base.z = std::min(base.z, points[i].z());
+    if (piece[i] == main_piece) base.z = std::min(base.z, points[i].z());
   }
   for (size_t i = 0; i < points.size(); ++i) {
-    if (graph.piece[i] == main_piece && points[i].z() <= base.z + band_width_m) {
+    if (piece[i] == main_piece && points[i].z() <= base.z + band_width_m) {
       base.roots.push_back(static_cast<int>(i));
       base.centroid += points[i];
     }
@@ -292,6 +319,31 @@ struct TrunkStep {
   double stretch_m = 0.0;
 };
 
+// The MSAC cylinder is kept only when the slices across the trunk vouch for it; otherwise the
+// slices' own cylinder replaces it, and without that the trunk has no cylinder (the base's spread
+// sizes it).
+void CheckAgainstSlices(TrunkStep& step, const TrunkCandidates& candidates, double base_z,
+                        double band_m, const ReconstructionOptions& options) {
+  if (!options.check_trunk_on_slices) return;
+  TrunkFit slices =
+      FitTrunkFromSlices(candidates.points, base_z, step.stretch_m, band_m, options.trunk_slices);
+  for (const TrunkSlice& sl : slices.slices) {
+    spdlog::debug("trunk slice {:.2f}-{:.2f} m: {} points, radius {:.4f}{}", sl.from_m, sl.to_m,
+                  sl.points, sl.radius_m, sl.agrees ? ", agrees" : "");
+  }
+  std::string why;
+  if (TrustTrunkCylinder(step.fit, slices, step.stretch_m, options.trunk_slices, &why)) return;
+  spdlog::debug("trunk: MSAC cylinder not trusted ({}); slices: found {}, radius {:.4f}; {}", why,
+                slices.found, slices.cylinder.radius, slices.note);
+  if (slices.found) {
+    slices.note = why + "; " + slices.note;
+    step.fit = std::move(slices);
+  } else {
+    step.fit.found = false;
+    step.fit.note = why + "; " + slices.note;
+  }
+}
+
 // The paper's MSAC cylinder on the lowest stretch of the trunk; below a fork when the tree forks
 // within it, on the cloud's own points when the trunk is only a few voxels wide.
 TrunkStep FitTrunk(const WorkingCloud& working, const PointIndex& index,
@@ -322,6 +374,7 @@ TrunkStep FitTrunk(const WorkingCloud& working, const PointIndex& index,
       fitted_points = refit->points;
     }
   }
+  CheckAgainstSlices(step, candidates, geodesics.base.z, working.scale.trunk_threshold_m, options);
   if (step.stretch == TrunkStretch::kBelowFork) {
     const std::string shortened = fmt::format(
         "fitted on the lowest {:.2f} m (a fork below {:.2f} m)", step.stretch_m, full_length);
@@ -556,6 +609,7 @@ void ReconstructionOptions::Validate() const {
   CheckNested("pruning", pruning);
   CheckNested("smoothing", smoothing);
   CheckNonNegative("trunk_voxels_for_full_cloud", trunk_voxels_for_full_cloud);
+  CheckNested("trunk_slices", trunk_slices);
   CheckNested("radii", radii);
   CheckNested("branches", branches);
 }

@@ -9,6 +9,7 @@
 //   working voxels                                     -> voxel_grid.h
 //   scan graph: neighbours, gap bridges, geodesics     -> scan_graph.h
 //   trunk cylinder by MSAC + slice check               -> trunk_cylinder.h
+//   the cylinder trusted or replaced by slice circles  -> trunk_from_slices.h
 //   medial samples along geodesic bands                -> geodesic_samples.h
 //   improved space colonization                        -> space_colonization.h
 //   twig pruning, smoothing                            -> twig_pruning.h, skeleton_smoothing.h
@@ -43,6 +44,7 @@
 #include "simtree/reconstruction/detail/skeleton_smoothing.h"
 #include "simtree/reconstruction/detail/space_colonization.h"
 #include "simtree/reconstruction/detail/trunk_cylinder.h"
+#include "simtree/reconstruction/detail/trunk_from_slices.h"
 #include "simtree/reconstruction/detail/twig_pruning.h"
 
 namespace simtree::reconstruction {
@@ -93,6 +95,10 @@ struct ReconstructionOptions {
   // radius is under trunk_voxels_for_full_cloud working voxels: voxels as wide as the depth noise
   // widen a thin trunk's blurred ring.
   bool trunk_on_full_cloud = true;
+  // The final cylinder is checked against circles fitted slab by slab across the trunk
+  // (trunk_from_slices.h) and replaced by theirs when they disagree or it holds too little.
+  bool check_trunk_on_slices = true;
+  SliceTrunkOptions trunk_slices;
   double trunk_voxels_for_full_cloud = 4.0;  // working voxels
   RadiusOptions radii;
   BranchDecompositionOptions branches;

@@ -33,7 +33,7 @@ struct RadiusOptions {
   double min_radius_m = 0.002;     // metres, the thinnest radius given
   bool local_fits = true;          // circle fits correct the radii (also off without points)
   bool recenter_on_fits = true;    // a node with a counting fit moves onto its centre
-  int fit_min_points = 10;         // points a fit needs
+  int fit_min_points = 6;          // points a fit needs
   double fit_min_arc_rad = 2.6;    // radians of the circle holding points (~150 degrees)
   double fit_max_residual = 0.25;  // RMS distance from the circle, in radii...
   double fit_min_radius_over_noise = 2.0;  // ... and fitted radius >= this x the roughness
