@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
 
 #include "simtree/core/error.h"
 #include "simtree/core/option_checks.h"
@@ -110,6 +111,7 @@ void InitFromTreeOptions::Validate() const {
   CheckInRange("pose_rotation_deg", pose_rotation_deg, 0.0, 30.0);
   CheckInRange("pose_translation_m", pose_translation_m, 0.0, 2.0);
   CheckInRange("match_radius_px", match_radius_px, 0.5, 100.0);
+  CheckInRange("min_match_radius_px", min_match_radius_px, 0.5, match_radius_px);
   CheckAtLeast("min_blob_pixels", min_blob_pixels, 1);
 }
 
@@ -132,7 +134,6 @@ InitFromTreeResult InitFromTree(const std::filesystem::path& pull_dir, const Tre
   InitFromTreeResult r;
   r.init.frame = stream.frames[0].frame;
   r.markers = ProjectMarkers(tree, stream, tree_from_camera);
-  r.match_radius_px = options.match_radius_px * scale;
   std::vector<size_t> candidates;  // markers whose projection (within its gate) meets the image
   std::vector<Eigen::Vector2d> projections;
   std::vector<double> gates;
@@ -155,16 +156,28 @@ InitFromTreeResult InitFromTree(const std::filesystem::path& pull_dir, const Tre
   r.color_model = model.Describe();
   const std::vector<Eigen::Vector2d> blobs = DetectTape(frame, model, options.min_blob_pixels);
   r.blobs = static_cast<int>(blobs.size());
+  for (const Eigen::Vector2d& b : blobs) {
+    spdlog::debug("init from tree: a tape blob at ({:.1f}, {:.1f})", b.x(), b.y());
+  }
 
-  const detail::ProjectionMatch match = detail::MatchProjections(
-      projections, gates, blobs,
-      detail::ProjectionMatchOptions{.match_radius_px = r.match_radius_px});
+  const detail::ProjectionMatch match =
+      detail::MatchProjections(projections, gates, blobs,
+                               detail::ProjectionMatchOptions{
+                                   .match_radius_px = options.match_radius_px * scale,
+                                   .min_match_radius_px = options.min_match_radius_px * scale,
+                               });
+  r.match_radius_px = match.gate_px;
   r.shift_px = match.shift_px;
   r.rotation_deg = match.rotation_deg;
   r.scale = match.scale;
   for (size_t c = 0; c < candidates.size(); ++c) {
     MarkerInit& m = r.markers[candidates[c]];
     m.corrected = match.corrected[c];
+    spdlog::debug(
+        "init from tree: marker {} projects to ({:.1f}, {:.1f}), gate {:.1f} px, "
+        "corrected ({:.1f}, {:.1f}), blob {}",
+        m.id, m.projected.x(), m.projected.y(), gates[c], m.corrected.x(), m.corrected.y(),
+        match.blob[c]);
     if (match.blob[c] < 0) {
       if (!k.Contains(m.corrected.x(), m.corrected.y())) m.status = MarkerInitStatus::kOutsideImage;
       continue;

@@ -36,8 +36,10 @@ struct InitFromTreeOptions {
   double pose_rotation_deg = 2.0;
   double pose_translation_m = 0.05;
   // What may remain after the common correction (px at a focal length of 434 px, scaled with the
-  // stream's fx as TrackOptions' radii are): the tape's centre against its axis point.
+  // stream's fx as TrackOptions' radii are): the tape's centre against its axis point. The final
+  // gate is 3 times the median remainder of the first assignment, within [min, max].
   double match_radius_px = 6.0;
+  double min_match_radius_px = 3.5;
   // Fewest tape pixels a blob needs.
   int min_blob_pixels = 3;
   // Throws OptionError naming the field.

@@ -1,5 +1,6 @@
 #include "simtree/tracking/detail/projection_match.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "simtree/core/units.h"
@@ -105,6 +106,22 @@ Similarity FitSimilarity(const std::vector<Eigen::Vector2d>& projections,
   return t;
 }
 
+// Hungarian assignment of blobs to points on pixel distance, pairs farther than `gate` refused.
+std::vector<int> Assign(const std::vector<Eigen::Vector2d>& points,
+                        const std::vector<Eigen::Vector2d>& blobs, double gate) {
+  if (blobs.empty()) return std::vector<int>(points.size(), -1);
+  const double forbidden = 1e12;  // far beyond any pixel distance
+  std::vector<std::vector<double>> cost(points.size(),
+                                        std::vector<double>(blobs.size(), forbidden));
+  for (size_t i = 0; i < points.size(); ++i) {
+    for (size_t j = 0; j < blobs.size(); ++j) {
+      const double d = (blobs[j] - points[i]).norm();
+      if (d <= gate) cost[i][j] = d;
+    }
+  }
+  return SolveAssignment(cost, forbidden);
+}
+
 }  // namespace
 
 ProjectionMatch MatchProjections(const std::vector<Eigen::Vector2d>& projections,
@@ -129,18 +146,19 @@ ProjectionMatch MatchProjections(const std::vector<Eigen::Vector2d>& projections
   out.scale = std::hypot(sr(0, 0), sr(1, 0));
   out.rotation_deg = RadToDeg(std::atan2(sr(1, 0), sr(0, 0)));
   out.shift_px = t.topRightCorner<2, 1>();
-  const double forbidden = 1e12;  // far beyond any pixel distance
-  std::vector<std::vector<double>> cost(projections.size(),
-                                        std::vector<double>(blobs.size(), forbidden));
-  for (size_t i = 0; i < projections.size(); ++i) {
-    out.corrected.push_back(Apply(t, projections[i]));
-    for (size_t j = 0; j < blobs.size(); ++j) {
-      const double d = (blobs[j] - out.corrected[i]).norm();
-      if (d <= radius) cost[i][j] = d;
-    }
+  for (const Eigen::Vector2d& p : projections) out.corrected.push_back(Apply(t, p));
+  const std::vector<int> first = Assign(out.corrected, blobs, radius);
+  std::vector<double> residuals;
+  for (size_t i = 0; i < first.size(); ++i) {
+    if (first[i] >= 0) residuals.push_back((blobs[first[i]] - out.corrected[i]).norm());
   }
-  out.blob =
-      blobs.empty() ? std::vector<int>(projections.size(), -1) : SolveAssignment(cost, forbidden);
+  out.gate_px = radius;
+  if (!residuals.empty()) {
+    std::nth_element(residuals.begin(), residuals.begin() + residuals.size() / 2, residuals.end());
+    out.gate_px = std::clamp(options.residual_factor * residuals[residuals.size() / 2],
+                             std::min(options.min_match_radius_px, radius), radius);
+  }
+  out.blob = Assign(out.corrected, blobs, out.gate_px);
   for (size_t i = 0; i < projections.size(); ++i) {
     out.distance_px.push_back(out.blob[i] < 0 ? -1.0
                                               : (blobs[out.blob[i]] - out.corrected[i]).norm());

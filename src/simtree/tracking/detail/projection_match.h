@@ -17,6 +17,11 @@ struct ProjectionMatchOptions {
   // A blob agrees with a corrected projection within this (px): what remains after the common
   // correction (the tape's centre against its axis point, parallax of the translation error).
   double match_radius_px = 6.0;
+  // The final gate follows how well the correction fits: `residual_factor` times the median
+  // distance of the first assignment's pairs, within [min_match_radius_px, match_radius_px]. A
+  // good fit leaves a marker whose own tape is not seen no room to take a neighbour's fragment.
+  double min_match_radius_px = 3.5;
+  double residual_factor = 3.0;
   // A similarity (rotation, scale, shift) is fitted from this many agreeing pairs on; fewer keep
   // the shift alone.
   int min_pairs_for_similarity = 3;
@@ -33,11 +38,12 @@ struct ProjectionMatch {
   double rotation_deg = 0.0;                           // ... rotation about the projections'
   double scale = 1.0;                                  // centroid and scale
   int agreeing = 0;                                    // projections that voted for the correction
+  double gate_px = 0.0;                                // the final gate (px)
 };
 
 // `projections` with their gates (px: how far the pose's uncertainty may move each one),
 // `blobs` the detected tape centres. Every input projection gets an entry; a projection with no
-// blob within match_radius_px of its corrected position is left unmatched, never given a far one.
+// blob within the final gate of its corrected position is left unmatched, never given a far one.
 ProjectionMatch MatchProjections(const std::vector<Eigen::Vector2d>& projections,
                                  const std::vector<double>& gates_px,
                                  const std::vector<Eigen::Vector2d>& blobs,
