@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -75,6 +76,10 @@ void AddTrackOptions(CLI::App* verb, TrackArgs& a) {
                    "docs/tracking.md#initialisation)")
       ->check(CLI::ExistingFile)
       ->needs(pick);
+  verb->add_flag("--init-unmatched", a.from_tree.keep_unmatched,
+                 "With --init-from: a marker with no tape blob near its projection starts at the "
+                 "corrected projection (the tracker starts it lost) instead of being left out")
+      ->needs(from);
   verb->add_flag("--init-only", a.init_only,
                  "Write --out/init.json (--init-from or --pick) and stop before tracking");
   verb->add_option("--color", a.options.color,
@@ -117,11 +122,17 @@ fs::path InitFromTree(const TrackArgs& a, const fs::path& pull) {
   const fs::path path = fs::path(a.out) / "init.json";
   fs::create_directories(a.out);
   WriteTrackInitJson(r.init, path);
+  const auto count = [&](tracking::MarkerInitStatus s) {
+    return std::count_if(r.markers.begin(), r.markers.end(),
+                         [&](const tracking::MarkerInit& m) { return m.status == s; });
+  };
   fmt::print(
-      "init from the tree: {} of {} markers matched to {} tape blobs (pose corrected by "
-      "({:.1f}, {:.1f}) px, {:.2f} deg, scale {:.3f}); wrote {}\n",
-      r.init.markers.size(), r.markers.size(), r.blobs, r.shift_px.x(), r.shift_px.y(),
-      r.rotation_deg, r.scale, path.string());
+      "init from the tree: {} of {} markers matched to {} tape blobs, {} at their projection "
+      "(pose corrected by ({:.1f}, {:.1f}) px, {:.2f} deg, scale {:.3f}, gate {:.1f} px); "
+      "wrote {}\n",
+      count(tracking::MarkerInitStatus::kMatched), r.markers.size(), r.blobs,
+      count(tracking::MarkerInitStatus::kProjected), r.shift_px.x(), r.shift_px.y(), r.rotation_deg,
+      r.scale, r.match_radius_px, path.string());
   return path;
 }
 

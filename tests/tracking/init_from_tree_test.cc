@@ -132,6 +132,21 @@ TEST_F(InitFromTreeTest, AHiddenMarkerIsReportedNotGivenANeighboursTape) {
   EXPECT_THAT(r.warnings[0], HasSubstr("marker 2"));
 }
 
+TEST_F(InitFromTreeTest, AskedToAHiddenMarkerStartsAtItsCorrectedProjection) {
+  std::vector<Eigen::Vector3d> drawn = CameraPoints();
+  drawn[2].z() = -1.0;
+  Draw(drawn);
+  InitFromTreeOptions options;
+  options.keep_unmatched = true;
+  const InitFromTreeResult r =
+      InitFromTree(pull_, TreeWithMarkers(CameraPoints()), PerturbedPose(1.0, 0.01), options);
+  ASSERT_EQ(r.init.markers.size(), 6u);
+  EXPECT_EQ(r.markers[2].status, MarkerInitStatus::kProjected);
+  // The correction the other five agree on carries the hidden one to about its true pixel.
+  EXPECT_LT((*r.markers[2].pixel - Truth(2)).norm(), 1.0);
+  EXPECT_GT((r.markers[2].projected - Truth(2)).norm(), 4.0);
+}
+
 TEST_F(InitFromTreeTest, APoseOffByMoreThanItsGateMatchesNothingAndSaysSo) {
   Draw(CameraPoints());
   const std::string error = test::ErrorOf(

@@ -77,7 +77,9 @@ std::vector<Eigen::Vector2d> DetectTape(const RgbdImage& frame, const detail::Ta
 }
 
 void CheckMatched(const InitFromTreeResult& r, const std::filesystem::path& first_frame) {
-  if (!r.init.markers.empty()) return;
+  for (const MarkerInit& m : r.markers) {
+    if (m.status == MarkerInitStatus::kMatched) return;
+  }
   int in_image = 0;
   for (const MarkerInit& m : r.markers) in_image += m.status == MarkerInitStatus::kNoBlob;
   throw InputError(
@@ -102,6 +104,8 @@ const char* ToString(MarkerInitStatus status) {
       return "outside the image";
     case MarkerInitStatus::kNoBlob:
       return "no tape blob in its gate";
+    case MarkerInitStatus::kProjected:
+      return "no tape blob in its gate; starts at its corrected projection";
   }
   return "?";
 }
@@ -179,7 +183,13 @@ InitFromTreeResult InitFromTree(const std::filesystem::path& pull_dir, const Tre
         m.id, m.projected.x(), m.projected.y(), gates[c], m.corrected.x(), m.corrected.y(),
         match.blob[c]);
     if (match.blob[c] < 0) {
-      if (!k.Contains(m.corrected.x(), m.corrected.y())) m.status = MarkerInitStatus::kOutsideImage;
+      if (!k.Contains(m.corrected.x(), m.corrected.y())) {
+        m.status = MarkerInitStatus::kOutsideImage;
+      } else if (options.keep_unmatched) {
+        m.status = MarkerInitStatus::kProjected;
+        m.pixel = m.corrected;
+        r.init.markers.push_back(MarkerPixel{m.id, m.corrected});
+      }
       continue;
     }
     m.status = MarkerInitStatus::kMatched;
@@ -194,7 +204,9 @@ InitFromTreeResult InitFromTree(const std::filesystem::path& pull_dir, const Tre
   }
   for (const MarkerInit& m : r.markers) {
     if (m.status != MarkerInitStatus::kMatched) {
-      r.warnings.push_back(fmt::format("marker {} not initialised: {}", m.id, ToString(m.status)));
+      r.warnings.push_back(fmt::format(
+          "marker {}{}: {}", m.id,
+          m.status == MarkerInitStatus::kProjected ? "" : " not initialised", ToString(m.status)));
     }
   }
   if (!r.missing.empty()) {

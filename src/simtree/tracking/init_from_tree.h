@@ -40,6 +40,10 @@ struct InitFromTreeOptions {
   // gate is 3 times the median remainder of the first assignment, within [min, max].
   double match_radius_px = 6.0;
   double min_match_radius_px = 3.5;
+  // A marker with no blob in its gate but a corrected projection inside the frame starts there
+  // (status kProjected: the tracker looks for it from that pixel, and starts it lost) instead of
+  // being left out, and so never tracked. Off: only markers seen on a tape are in the init.
+  bool keep_unmatched = false;
   // Fewest tape pixels a blob needs.
   int min_blob_pixels = 3;
   // Throws OptionError naming the field.
@@ -53,6 +57,7 @@ enum class MarkerInitStatus {
   kBehindCamera,  // its point is behind (or within 5 cm of) the camera
   kOutsideImage,  // it projects outside the frame
   kNoBlob,        // no tape blob within the gate of its corrected projection
+  kProjected,     // kNoBlob, but in the init at its corrected projection (keep_unmatched)
 };
 const char* ToString(MarkerInitStatus status);
 
@@ -61,13 +66,14 @@ struct MarkerInit {
   MarkerInitStatus status = MarkerInitStatus::kNoBlob;
   Eigen::Vector2d projected = Eigen::Vector2d::Zero();  // px, with the pose as given
   Eigen::Vector2d corrected = Eigen::Vector2d::Zero();  // px, after the common correction
-  std::optional<Eigen::Vector2d> pixel;                 // the matched blob's centre (kMatched)
+  // In the init: the matched blob's centre (kMatched) or the corrected projection (kProjected).
+  std::optional<Eigen::Vector2d> pixel;
   double distance_px = -1.0;  // from the corrected projection to the blob (-1: none)
   double depth_m = 0.0;       // of the marker's point in the camera frame
 };
 
 struct InitFromTreeResult {
-  TrackInit init;                   // the matched markers, at the stream's first frame
+  TrackInit init;  // the matched (and kProjected) markers, at the stream's first frame
   std::vector<MarkerInit> markers;  // every marker of the tree, in the tree's order
   std::vector<int> missing;         // markers.json ids the tree has no marker for
   int blobs = 0;                    // tape blobs found in the frame
