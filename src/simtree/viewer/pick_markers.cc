@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -17,7 +18,6 @@
 #include "simtree/io/image_io.h"
 #include "simtree/viewer/detail/gl.h"
 #include "simtree/viewer/detail/pick_session.h"
-#include "simtree/viewer/xvfb.h"
 
 #define GLFW_INCLUDE_NONE  // the GL declarations are gl.h's
 #include <GLFW/glfw3.h>
@@ -103,7 +103,10 @@ class PickWindow {
   void Open() {
     glfwSetErrorCallback(
         [](int code, const char* message) { spdlog::debug("GLFW error {}: {}", code, message); });
-    if (!HasDisplay() || !glfwInit()) {
+    // DISPLAY unset refuses at once; otherwise GLFW's own connection decides (it also reaches
+    // servers whose /tmp/.X11-unix socket file is gone, which HasDisplay() does not).
+    const char* display = std::getenv("DISPLAY");
+    if (display == nullptr || display[0] == '\0' || !glfwInit()) {
       throw Error(
           "track --pick: cannot open a window: no X display (set DISPLAY, or run under "
           "xvfb-run); without one give the first-frame pixels with --init or --init-from");
