@@ -76,6 +76,91 @@ std::vector<Eigen::Vector2d> DetectTape(const RgbdImage& frame, const detail::Ta
   return centres;
 }
 
+// The markers whose projection, grown by its pose gate, meets the image; the others are marked
+// outside it.
+struct Candidates {
+  std::vector<size_t> index;  // into InitFromTreeResult::markers
+  std::vector<Eigen::Vector2d> projections;
+  std::vector<double> gates;
+};
+
+Candidates SelectCandidates(const InitFromTreeOptions& options, const CameraIntrinsics& k,
+                            InitFromTreeResult* r) {
+  const double scale = k.fx / kReferenceFocalPx;
+  Candidates c;
+  for (size_t i = 0; i < r->markers.size(); ++i) {
+    MarkerInit& m = r->markers[i];
+    if (m.status != MarkerInitStatus::kNoBlob) continue;
+    const double gate = PoseGate(options, k.fx, m.depth_m, scale);
+    if (m.projected.x() < -gate || m.projected.y() < -gate ||
+        m.projected.x() > k.width - 1 + gate || m.projected.y() > k.height - 1 + gate) {
+      m.status = MarkerInitStatus::kOutsideImage;
+      continue;
+    }
+    c.index.push_back(i);
+    c.projections.push_back(m.projected);
+    c.gates.push_back(gate);
+    r->gate_px = std::max(r->gate_px, gate);
+  }
+  return c;
+}
+
+// Each candidate's outcome: matched to its blob, kept at its corrected projection, or not.
+void ApplyMatch(const detail::ProjectionMatch& match, const Candidates& candidates,
+                const std::vector<Eigen::Vector2d>& blobs, const CameraIntrinsics& k,
+                bool keep_unmatched, InitFromTreeResult* r) {
+  r->match_radius_px = match.gate_px;
+  r->shift_px = match.shift_px;
+  r->rotation_deg = match.rotation_deg;
+  r->scale = match.scale;
+  for (const Eigen::Vector2d& b : blobs) {
+    spdlog::debug("init from tree: a tape blob at ({:.1f}, {:.1f})", b.x(), b.y());
+  }
+  for (size_t c = 0; c < candidates.index.size(); ++c) {
+    MarkerInit& m = r->markers[candidates.index[c]];
+    m.corrected = match.corrected[c];
+    spdlog::debug(
+        "init from tree: marker {} projects to ({:.1f}, {:.1f}), gate {:.1f} px, "
+        "corrected ({:.1f}, {:.1f}), blob {}",
+        m.id, m.projected.x(), m.projected.y(), candidates.gates[c], m.corrected.x(),
+        m.corrected.y(), match.blob[c]);
+    if (match.blob[c] < 0) {
+      if (!k.Contains(m.corrected.x(), m.corrected.y())) {
+        m.status = MarkerInitStatus::kOutsideImage;
+      } else if (keep_unmatched) {
+        m.status = MarkerInitStatus::kProjected;
+        m.pixel = m.corrected;
+        r->init.markers.push_back(MarkerPixel{m.id, m.corrected});
+      }
+      continue;
+    }
+    m.status = MarkerInitStatus::kMatched;
+    m.pixel = blobs[match.blob[c]];
+    m.distance_px = match.distance_px[c];
+    r->init.markers.push_back(MarkerPixel{m.id, *m.pixel});
+  }
+}
+
+// A warning for every marker not matched, and the markers.json ids the tree lacks.
+void ListProblems(const Tree& tree, const PullStream& stream, InitFromTreeResult* r) {
+  std::set<int> in_tree;
+  for (const Marker& m : tree.markers) in_tree.insert(m.id);
+  for (const MarkerLink& m : stream.markers) {
+    if (!in_tree.contains(m.id)) r->missing.push_back(m.id);
+  }
+  for (const MarkerInit& m : r->markers) {
+    if (m.status != MarkerInitStatus::kMatched) {
+      r->warnings.push_back(fmt::format(
+          "marker {}{}: {}", m.id,
+          m.status == MarkerInitStatus::kProjected ? "" : " not initialised", ToString(m.status)));
+    }
+  }
+  if (!r->missing.empty()) {
+    r->warnings.push_back(
+        fmt::format("markers.json lists markers the tree lacks: {}", fmt::join(r->missing, ", ")));
+  }
+}
+
 void CheckMatched(const InitFromTreeResult& r, const std::filesystem::path& first_frame) {
   for (const MarkerInit& m : r.markers) {
     if (m.status == MarkerInitStatus::kMatched) return;
@@ -138,81 +223,20 @@ InitFromTreeResult InitFromTree(const std::filesystem::path& pull_dir, const Tre
   InitFromTreeResult r;
   r.init.frame = stream.frames[0].frame;
   r.markers = ProjectMarkers(tree, stream, tree_from_camera);
-  std::vector<size_t> candidates;  // markers whose projection (within its gate) meets the image
-  std::vector<Eigen::Vector2d> projections;
-  std::vector<double> gates;
-  for (size_t i = 0; i < r.markers.size(); ++i) {
-    MarkerInit& m = r.markers[i];
-    if (m.status != MarkerInitStatus::kNoBlob) continue;
-    const double gate = PoseGate(options, k.fx, m.depth_m, scale);
-    if (m.projected.x() < -gate || m.projected.y() < -gate ||
-        m.projected.x() > k.width - 1 + gate || m.projected.y() > k.height - 1 + gate) {
-      m.status = MarkerInitStatus::kOutsideImage;
-      continue;
-    }
-    candidates.push_back(i);
-    projections.push_back(m.projected);
-    gates.push_back(gate);
-    r.gate_px = std::max(r.gate_px, gate);
-  }
+  const Candidates candidates = SelectCandidates(options, k, &r);
   const detail::TapeColorModel model =
-      ChooseModel(options.color, frame.color, projections, r.gate_px);
+      ChooseModel(options.color, frame.color, candidates.projections, r.gate_px);
   r.color_model = model.Describe();
   const std::vector<Eigen::Vector2d> blobs = DetectTape(frame, model, options.min_blob_pixels);
   r.blobs = static_cast<int>(blobs.size());
-  for (const Eigen::Vector2d& b : blobs) {
-    spdlog::debug("init from tree: a tape blob at ({:.1f}, {:.1f})", b.x(), b.y());
-  }
-
   const detail::ProjectionMatch match =
-      detail::MatchProjections(projections, gates, blobs,
+      detail::MatchProjections(candidates.projections, candidates.gates, blobs,
                                detail::ProjectionMatchOptions{
                                    .match_radius_px = options.match_radius_px * scale,
                                    .min_match_radius_px = options.min_match_radius_px * scale,
                                });
-  r.match_radius_px = match.gate_px;
-  r.shift_px = match.shift_px;
-  r.rotation_deg = match.rotation_deg;
-  r.scale = match.scale;
-  for (size_t c = 0; c < candidates.size(); ++c) {
-    MarkerInit& m = r.markers[candidates[c]];
-    m.corrected = match.corrected[c];
-    spdlog::debug(
-        "init from tree: marker {} projects to ({:.1f}, {:.1f}), gate {:.1f} px, "
-        "corrected ({:.1f}, {:.1f}), blob {}",
-        m.id, m.projected.x(), m.projected.y(), gates[c], m.corrected.x(), m.corrected.y(),
-        match.blob[c]);
-    if (match.blob[c] < 0) {
-      if (!k.Contains(m.corrected.x(), m.corrected.y())) {
-        m.status = MarkerInitStatus::kOutsideImage;
-      } else if (options.keep_unmatched) {
-        m.status = MarkerInitStatus::kProjected;
-        m.pixel = m.corrected;
-        r.init.markers.push_back(MarkerPixel{m.id, m.corrected});
-      }
-      continue;
-    }
-    m.status = MarkerInitStatus::kMatched;
-    m.pixel = blobs[match.blob[c]];
-    m.distance_px = match.distance_px[c];
-    r.init.markers.push_back(MarkerPixel{m.id, *m.pixel});
-  }
-  std::set<int> in_tree;
-  for (const Marker& m : tree.markers) in_tree.insert(m.id);
-  for (const MarkerLink& m : stream.markers) {
-    if (!in_tree.contains(m.id)) r.missing.push_back(m.id);
-  }
-  for (const MarkerInit& m : r.markers) {
-    if (m.status != MarkerInitStatus::kMatched) {
-      r.warnings.push_back(fmt::format(
-          "marker {}{}: {}", m.id,
-          m.status == MarkerInitStatus::kProjected ? "" : " not initialised", ToString(m.status)));
-    }
-  }
-  if (!r.missing.empty()) {
-    r.warnings.push_back(
-        fmt::format("markers.json lists markers the tree lacks: {}", fmt::join(r.missing, ", ")));
-  }
+  ApplyMatch(match, candidates, blobs, k, options.keep_unmatched, &r);
+  ListProblems(tree, stream, &r);
   CheckMatched(r, stream.directory / stream.frames[0].color);
   return r;
 }
