@@ -5,9 +5,8 @@
 // Seen from the side a band projects to a rectangle: the branch's diameter across, the tape's
 // width along the branch (foreshortened). The blob's weighted moments give it: the principal axis
 // is the branch's direction in the image, and a uniform interval of half-length a has variance
-// a^2 / 3. The camera's colour blur (defocus, and MJPEG's chroma at half the width: the tape is
-// found by its chroma) adds its own variance to the blob's and is taken off, else a 3-8 px band
-// reads a pixel wide.
+// a^2 / 3. A known colour blur of the camera (defocus, MJPEG's chroma at half the width: the tape
+// is found by its chroma) adds its own variance to the blob's and can be taken off.
 
 #include <array>
 #include <vector>

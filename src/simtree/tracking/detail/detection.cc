@@ -124,7 +124,8 @@ Detection MeasureBlob(const Blob& blob, const RgbdImage& image, BlobDetector& de
   det.depth_quantile = options.depth_quantile;
   if (z_surface > 0.0) {
     det.has_depth = true;
-    // The axis offset was chosen with the tape's width as the camera blurs it: the blur put back.
+    // The axis offset was chosen with the tape's width as the camera blurs it: any blur taken off
+    // the band is put back.
     const Eigen::Vector2d across(-det.shape.axis.y(), det.shape.axis.x());
     const double blur = options.blur_var_px2.dot(across.cwiseProduct(across));
     const double radius_px = std::sqrt(det.shape.radius * det.shape.radius + 3.0 * blur);

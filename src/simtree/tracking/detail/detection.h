@@ -23,10 +23,11 @@ namespace simtree::tracking::detail {
 
 struct MeasureOptions {
   double edge_m = 0.03;  // depth step that marks a depth edge
-  // Variance (px^2, x and y) the colour camera's blur adds to a tape's extent, mostly MJPEG's
-  // chroma at half the width (4:2:2, the Azure Kinect's colour: averaged over two pixels of a row
-  // and interpolated back). Chosen on synth's camera colour over three species (docs/tracking.md).
-  Eigen::Vector2d blur_var_px2 = Eigen::Vector2d(0.45, 0.0);
+  // Variance (px^2, x and y) the colour camera's blur adds to a tape's extent, taken off the
+  // band's (band_shape.h). 0: on synth's camera colour (MJPEG 4:2:2 chroma, defocus) a uniform
+  // 0.45 px^2 across rows narrowed boxes too wide on some streams and too narrow on others (the
+  // bias is each tape's colour, not the camera's), so no blur is assumed.
+  Eigen::Vector2d blur_var_px2 = Eigen::Vector2d::Zero();
   double axis_offset_ratio = 1.0;  // axis behind the measured front, in branch radii
   double depth_quantile = 0.25;    // quantile of the tape's depths taken as its front
 };
