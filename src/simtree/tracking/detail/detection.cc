@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/Eigenvalues>
-
 namespace simtree::tracking::detail {
 namespace {
 
@@ -100,32 +98,15 @@ Detection MeasureBlob(const Blob& blob, const RgbdImage& image, BlobDetector& de
   det.source = blob.source;
   const int width = image.color.width;
   const std::vector<double> coverage = TapeCoverage(blob, image.color, detector);
-  double sw = 0.0;
-  Eigen::Vector2d s1 = Eigen::Vector2d::Zero();
-  Eigen::Matrix2d s2 = Eigen::Matrix2d::Zero();
-  size_t next = 0;
+  std::vector<Eigen::Vector2d> points;
+  points.reserve(coverage.size());
   for (const std::vector<int>* list : {&blob.pixels, &blob.ring}) {
-    for (int i : *list) {
-      const double w = coverage[next++];
-      const Eigen::Vector2d p(i % width, i / width);
-      sw += w;
-      s1 += w * p;
-      s2 += w * p * p.transpose();
-    }
+    for (int i : *list) points.emplace_back(i % width, i / width);
   }
-  det.weight = sw;
-  det.center = s1 / sw;
-  const Eigen::Matrix2d cov = s2 / sw - det.center * det.center.transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(cov);
-  Eigen::Vector2d half = Eigen::Vector2d::Zero();
-  Eigen::Vector2d semi;  // the rectangle's half-lengths along its two axes
-  for (int k = 0; k < 2; ++k) {
-    semi[k] =
-        options.box_scale * std::sqrt(3.0 * (std::max(0.0, eig.eigenvalues()[k]) + 1.0 / 12.0));
-    semi[k] = std::max(semi[k], 0.5);
-    half += semi[k] * eig.eigenvectors().col(k).cwiseAbs();
-  }
-  det.half_extent = half + Eigen::Vector2d::Constant(options.box_margin_px);
+  for (double c : coverage) det.weight += c;
+  det.shape = det.weight > 0.0 ? MeasureBandShape(points, coverage, options.blur_var_px2)
+                               : BandShape{.center = points.front()};
+  det.center = det.shape.center;
 
   const CameraIntrinsics& k = image.intrinsics;
   // Depth from the pixels that are mostly tape (a mixed pixel's depth may be the background's).
@@ -143,8 +124,12 @@ Detection MeasureBlob(const Blob& blob, const RgbdImage& image, BlobDetector& de
   det.depth_quantile = options.depth_quantile;
   if (z_surface > 0.0) {
     det.has_depth = true;
-    // The smaller half-length spans the branch: its radius in pixels.
-    det.radius_m = std::clamp(semi[0] * z_surface / k.fx, 0.002, 0.06);
+    // The axis offset was chosen with the tape's width as the camera blurs it: any blur taken off
+    // the band is put back.
+    const Eigen::Vector2d across(-det.shape.axis.y(), det.shape.axis.x());
+    const double blur = options.blur_var_px2.dot(across.cwiseProduct(across));
+    const double radius_px = std::sqrt(det.shape.radius * det.shape.radius + 3.0 * blur);
+    det.radius_m = std::clamp(radius_px * z_surface / k.fx, 0.002, 0.06);
     det.front_m = z_surface;
     const double z_axis = z_surface + options.axis_offset_ratio * det.radius_m;
     det.position = k.Unproject(det.center.x(), det.center.y(), z_axis);

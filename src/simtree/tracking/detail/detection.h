@@ -1,12 +1,7 @@
 #pragma once
 // What one tape blob says about its marker: the sub-pixel centre (the centroid of its pixels and
-// their mixed ring, each weighted by its share of tape, TapeCoverage), the box of the whole tape
-// band, and the marker's 3D centre on the branch axis.
-//
-// Box: a band seen from the side projects to about a rectangle (its length along the branch by
-// the branch's diameter across it). The weighted second moments of the blob's pixels, plus each
-// pixel's own extent (1/12 px^2), give the rectangle's axes and, for a uniform rectangle,
-// half-lengths sqrt(3 lambda); the box bounds that rectangle grown by `box_margin_px`.
+// their mixed ring, each weighted by its share of tape, TapeCoverage), the band's shape and box
+// (band_shape.h), and the marker's 3D centre on the branch axis.
 //
 // 3D centre: a low quantile (`depth_quantile`) of the depths of the blob's clean tape pixels,
 // after dropping pixels on a depth edge (a 4-neighbour more than `edge_m` away: flying pixels
@@ -21,21 +16,25 @@
 #include <Eigen/Core>
 
 #include "simtree/io/capture.h"
+#include "simtree/tracking/detail/band_shape.h"
 #include "simtree/tracking/detail/blob_detector.h"
 
 namespace simtree::tracking::detail {
 
 struct MeasureOptions {
-  double edge_m = 0.03;            // depth step that marks a depth edge
-  double box_margin_px = 0.0;      // added to each side of the rectangle's box
-  double box_scale = 1.0;          // scales the rectangle's half-lengths
+  double edge_m = 0.03;  // depth step that marks a depth edge
+  // Variance (px^2, x and y) the colour camera's blur adds to a tape's extent, taken off the
+  // band's (band_shape.h). 0: on synth's camera colour (MJPEG 4:2:2 chroma, defocus) a uniform
+  // 0.45 px^2 across rows narrowed boxes too wide on some streams and too narrow on others (the
+  // bias is each tape's colour, not the camera's), so no blur is assumed.
+  Eigen::Vector2d blur_var_px2 = Eigen::Vector2d::Zero();
   double axis_offset_ratio = 1.0;  // axis behind the measured front, in branch radii
   double depth_quantile = 0.25;    // quantile of the tape's depths taken as its front
 };
 
 struct Detection {
-  Eigen::Vector2d center = Eigen::Vector2d::Zero();       // px
-  Eigen::Vector2d half_extent = Eigen::Vector2d::Zero();  // half width, half height of the box
+  Eigen::Vector2d center = Eigen::Vector2d::Zero();  // px
+  BandShape shape;                                   // the band it shows, centred at `center`
   double weight = 0.0;  // summed tape weight (about the tape's visible area, px)
   int pixel_count = 0;  // tape pixels
   int source = 0;       // Blob::source: detections split from one blob share it
@@ -46,10 +45,7 @@ struct Detection {
   std::vector<double> depths_m;                        // the clean tape pixels' depths, sorted (m)
   double depth_quantile = 0.25;                        // the quantile taken as the front
 
-  std::array<double, 4> Box() const {
-    return {center.x() - half_extent.x(), center.y() - half_extent.y(), 2.0 * half_extent.x(),
-            2.0 * half_extent.y()};
-  }
+  std::array<double, 4> Box() const { return shape.Box(); }
 };
 
 // Measures a blob of the last frame `detector` searched.

@@ -239,20 +239,15 @@ MarkerFrameResult MarkerTracker::Measured(Marker& m, const Detection& measured) 
   }
   m.pixel = det.center;
   m.coast = 0;
-  // The band's size: from the detection when the tape shows whole, else remembered.
+  // The band's box from its model, fed by the frames where the tape shows whole (a partly hidden
+  // tape's blob says little of the band's size).
   const double z = det.has_depth ? det.position.z() : m.last_position.z();
-  Eigen::Vector2d half = det.half_extent;
   const bool whole = det.weight >= kPartialWeight * m.typical_weight;
   m.typical_weight = std::max(det.weight, 0.97 * m.typical_weight);
-  if (whole && z > 0.0) {
-    const Eigen::Vector2d size = det.half_extent * z;
-    m.band_size_m = m.band_size_m.isZero() ? size : (0.7 * m.band_size_m + 0.3 * size).eval();
-  } else if (!m.band_size_m.isZero() && z > 0.0) {
-    half = half.cwiseMax(m.band_size_m / z);
-  }
-  out.box.center = {det.center.x(), det.center.y()};
-  out.box.box = {det.center.x() - half.x(), det.center.y() - half.y(), 2.0 * half.x(),
-                 2.0 * half.y()};
+  if (whole && z > 0.0) m.band.Observe(det.shape, z);
+  const BandShape band = m.band.known() && z > 0.0 ? m.band.At(det.center, z) : det.shape;
+  out.box.center = {band.center.x(), band.center.y()};
+  out.box.box = band.Box();
   out.box.confidence =
       m.typical_weight > 0.0 ? std::clamp(det.weight / m.typical_weight, 0.0, 1.0) : 1.0;
   return out;
@@ -270,10 +265,11 @@ MarkerFrameResult MarkerTracker::Unmeasured(Marker& m) {
     m.pixel = intrinsics_.Project(m.last_position);
   }
   const double z = m.started ? m.motion.position().z() : 0.0;
-  Eigen::Vector2d half = Eigen::Vector2d::Constant(0.5);
-  if (!m.band_size_m.isZero() && z > 0.0) half = m.band_size_m / z;
-  out.box.center = {m.pixel.x(), m.pixel.y()};
-  out.box.box = {m.pixel.x() - half.x(), m.pixel.y() - half.y(), 2.0 * half.x(), 2.0 * half.y()};
+  BandShape band;  // a one-pixel box until the band has been seen
+  band.center = m.pixel;
+  if (m.band.known() && z > 0.0) band = m.band.At(m.pixel, z);
+  out.box.center = {band.center.x(), band.center.y()};
+  out.box.box = band.Box();
   out.box.confidence = coasting ? std::pow(0.8, m.coast) : 0.0;
   return out;
 }

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "simtree/io/capture.h"
+#include "simtree/tracking/detail/band_model.h"
 #include "simtree/tracking/detail/blob_detector.h"
 #include "simtree/tracking/detail/detection.h"
 #include "simtree/tracking/detail/motion_model.h"
@@ -42,7 +43,7 @@ class MarkerTracker {
     Eigen::Vector2d pixel = Eigen::Vector2d::Zero();       // last known or predicted pixel
     Eigen::Vector2d rest_pixel = Eigen::Vector2d::Zero();  // first measured pixel
     Eigen::Vector3d last_position = Eigen::Vector3d::Zero();
-    Eigen::Vector2d band_size_m = Eigen::Vector2d::Zero();  // box half-extents x depth (px m)
+    BandModel band;               // the tape band's shape, for its box
     double typical_weight = 0.0;  // running tape weight when fully visible
     int coast = 0;                // frames since last measured
     int age = 0;                  // frames since start
