@@ -18,6 +18,8 @@ packages=(
   ffmpeg
   # formats, CLI, logging
   nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev libtinygltf-dev
+  # robot simulators for `simtree export` (MuJoCo loads the MJCF; urdfdom, sdformat parse)
+  libmujoco-dev liburdfdom-dev libsdformat-dev
   # viewer and headless rendering
   libglfw3-dev libgl-dev libegl-dev libegl-mesa0 libimgui-dev libgl1-mesa-dri xvfb xauth
   # the HTML report: three.js r111 and Chart.js, inlined into report.html (docs/report.md)

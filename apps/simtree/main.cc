@@ -52,6 +52,7 @@ int main(int argc, char** argv) {
   RegisterIdentify(app);
   RegisterBuild(app);
   RegisterSimulate(app);
+  RegisterExport(app);
   RegisterView(app);
   RegisterRender(app);
   RegisterRun(app);

@@ -14,6 +14,7 @@ void RegisterTrack(CLI::App& app);
 void RegisterIdentify(CLI::App& app);
 void RegisterBuild(CLI::App& app);
 void RegisterSimulate(CLI::App& app);
+void RegisterExport(CLI::App& app);  // robot simulators (verb_export.cc)
 void RegisterView(CLI::App& app);
 void RegisterRender(CLI::App& app);
 void RegisterRun(CLI::App& app);
