@@ -13,9 +13,9 @@ packages=(
   libpcl-dev
   # images, video, tracking
   libopencv-dev libopencv-contrib-dev libavformat-dev libavcodec-dev libavutil-dev libswscale-dev
+  ffmpeg
   # RealSense .bag chunks (lz4, bz2)
   liblz4-dev libbz2-dev
-  ffmpeg
   # formats, CLI, logging
   nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev libtinygltf-dev
   # robot simulators for `simtree export` (MuJoCo loads the MJCF; urdfdom, sdformat parse)
