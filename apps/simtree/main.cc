@@ -22,10 +22,10 @@ int main(int argc, char** argv) {
       "simtree: a real tree from one consumer RGB-D camera, as a simulation-ready tree "
       "(branch hierarchy of generalized cylinders with measured natural frequencies and damping "
       "ratios).\n\n"
-      "Pipeline: capture-from (Azure Kinect .mkv) | synth -> capture folder\n"
+      "Pipeline: capture-from (Azure .mkv, RealSense .bag, TUM, Open3D) | synth -> capture folder\n"
       "          scans -> preprocess -> register -> reconstruct -> static tree\n"
       "          pull-test stream -> track -> identify -> materials\n"
-      "          static tree + materials -> build -> simulate / view / render\n"
+      "          static tree + materials -> build -> simulate / view / render / export\n"
       "          run: all of it on a capture folder; demo: synth + run + eval",
       "simtree"};
   app.set_version_flag("--version", std::string("simtree ") + SIMTREE_VERSION);
