@@ -46,8 +46,9 @@ void TreeSeeds(const fs::path& out, const fs::path& shared) {
   CopyIfPresent(shared / "authors-demo/tree_parameters.txt", out / "legacy_parameters/authors.txt");
 }
 
-// A pull test of three linked markers, identified as `identify` would (as the materials tests
-// do), gives markers.json, trajectories.csv and materials.json.
+// A pull test of three linked markers (as the materials tests make it) gives markers.json and
+// trajectories.csv; materials.json holds a measured link, a missing one and the branch modes
+// (identifying the record itself takes minutes under the sanitizers).
 void PullTestSeeds(const fs::path& out) {
   identification::SyntheticMarkerTree tree;
   tree.links.resize(2);
@@ -57,14 +58,37 @@ void PullTestSeeds(const fs::path& out) {
   tree.links[1].rest_direction = {1, -0.2, 0};
   tree.links[1].theta_u = {{1.6, 0.05, 0.1, 0.0}};
   std::vector<MarkerLink> markers;
-  const Trajectories full = identification::MakeMarkerTrajectories(tree, 30, 0.2, 4, &markers);
+  const Trajectories full = identification::MakeMarkerTrajectories(tree, 30, 0.2, 2, &markers);
   markers[1].branch = 3;
   WriteMarkersJson(markers, Target(out, "markers_json") / "markers.json");
-  const identification::IdentificationResult result =
-      identification::IdentifyMaterials(full, markers);
-  identification::WriteMaterialsJson(
-      identification::MaterialsFromIdentification(result, "trajectories.csv"),
-      Target(out, "materials_json") / "materials.json");
+  identification::MaterialsFile materials;
+  materials.trajectories = "trajectories.csv";
+  materials.frame_rate_hz = 30;
+  materials.release_time_s = 0.2;
+  materials.release_detected = true;
+  materials.window_start_s = 0.3;
+  materials.window_end_s = 2.2;
+  identification::LinkMaterial measured;
+  measured.child = 1;
+  measured.parent = 0;
+  measured.label = "M1";
+  measured.branch = 3;
+  measured.value.frequency_hz = 1.2;
+  measured.value.damping_ratio = 0.03;
+  measured.value.frequency_std_hz = 0.01;
+  measured.value.damping_std = 0.004;
+  measured.planes = {measured.value, measured.value};
+  for (identification::EstimatorKind kind : identification::AllEstimators()) {
+    measured.estimators.emplace_back(kind, measured.value);
+  }
+  identification::LinkMaterial missing;
+  missing.child = 2;
+  missing.parent = 1;
+  missing.label = "M2";
+  missing.value.status = identification::EstimateStatus::kMissingMarker;
+  materials.links = {measured, missing};
+  identification::AssignBranchMaterials(materials);
+  identification::WriteMaterialsJson(materials, Target(out, "materials_json") / "materials.json");
   // A second of it, with one marker lost for a frame (an empty, invalid row).
   Trajectories part;
   part.tracks.resize(full.tracks.size());
