@@ -5,6 +5,7 @@ BUILD      ?= build
 ASAN_BUILD ?= build-asan
 BENCH_BUILD ?= build-bench
 ODR_BUILD  ?= build-odr
+FUZZ_BUILD ?= build-fuzz
 JOBS       ?= $(shell nproc)
 SHARED     ?= $(abspath ../shared)
 SIMTREE    := $(BUILD)/bin/simtree
@@ -12,7 +13,7 @@ SIMTREE    := $(BUILD)/bin/simtree
 WERROR     := $(if $(filter true,$(CI)),ON,OFF)
 CMAKE_ARGS := -DSIMTREE_SHARED_DIR=$(SHARED) -DSIMTREE_WERROR=$(WERROR)
 
-.PHONY: all deps configure build cli demo test test-fast asan odr-check bench format clean
+.PHONY: all deps configure build cli demo test test-fast asan odr-check fuzz bench format clean
 
 all: build
 
@@ -62,6 +63,20 @@ odr-check: deps
 	  -DSIMTREE_ODR_CHECK=ON -DSIMTREE_BUILD_TESTS=OFF -DSIMTREE_BUILD_APPS=OFF $(CMAKE_ARGS)
 	cmake --build $(ODR_BUILD) -j $(JOBS) --target simtree_odr_check
 
+# Every reader under libFuzzer with ASan + UBSan (docs/fuzzing.md): a clang build of the readers'
+# libraries only, seeds written by simtree's writers, then each target for FUZZ_SECONDS (FUZZ_JOBS
+# at once; FUZZ_TARGETS to pick some). Fails on any crash, hang, memory blowup or sanitizer report.
+# -O1 -g1 and assertions on: reports keep their lines, and a failed assert is a finding too.
+FUZZ_SECONDS ?= 60
+FUZZ_JOBS    ?= 1
+FUZZ_TARGETS ?=
+fuzz: deps
+	cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1" \
+	  -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 -DSIMTREE_FUZZ=ON $(CMAKE_ARGS)
+	cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzzers
+	FUZZ_SECONDS=$(FUZZ_SECONDS) FUZZ_JOBS=$(FUZZ_JOBS) SHARED=$(SHARED) \
+	  fuzz/run.sh $(FUZZ_BUILD) $(FUZZ_TARGETS)
+
 # Benchmarks (Google Benchmark and side-by-side peers); see docs/benchmarks.md.
 bench: deps
 	cmake -S . -B $(BENCH_BUILD) -DCMAKE_BUILD_TYPE=Release -DSIMTREE_BUILD_BENCH=ON $(CMAKE_ARGS)
@@ -72,4 +87,4 @@ format:
 	git ls-files '*.cc' '*.h' | xargs clang-format -i
 
 clean:
-	rm -rf $(BUILD) $(ASAN_BUILD) $(BENCH_BUILD) $(ODR_BUILD) out
+	rm -rf $(BUILD) $(ASAN_BUILD) $(BENCH_BUILD) $(ODR_BUILD) $(FUZZ_BUILD) out

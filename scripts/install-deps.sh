@@ -24,6 +24,8 @@ packages=(
   libglfw3-dev libgl-dev libegl-dev libegl-mesa0 libimgui-dev libgl1-mesa-dri xvfb xauth
   # the HTML report: three.js r111 and Chart.js, inlined into report.html (docs/report.md)
   libjs-three libjs-chart.js
+  # fuzzing (make fuzz): clang's libFuzzer and sanitizer runtimes
+  clang-14 libclang-rt-14-dev
   # tests and benchmarks (chromium: the report's end-to-end test opens it headless)
   libgtest-dev libgmock-dev libbenchmark-dev python3-open3d python3-jsonschema chromium
 )

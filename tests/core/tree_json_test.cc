@@ -106,6 +106,19 @@ TEST(TreeJson, SyntaxErrorsGiveLineAndColumn) {
   EXPECT_THAT(ErrorOf(text.substr(0, text.size() / 2)), HasSubstr("invalid JSON"));
 }
 
+// A number beyond a double's range is nlohmann's out_of_range, not a parse_error; it escaped as
+// such (found by fuzz/markers_json, fuzz/regressions/markers_json/number_overflow.json).
+TEST(TreeJson, NumbersBeyondADoubleAreInputErrors) {
+  EXPECT_THAT(ErrorOf("44644404444E4444"),
+              HasSubstr("t.json: invalid JSON (number overflow parsing '44644404444E4444')"));
+  std::string text = ValidDoc().dump(1);
+  text.insert(text.find("\"parent\"") + 9, "1E999, \"x\": ");
+  EXPECT_THAT(ErrorOf(text), HasSubstr("number overflow parsing '1E999'"));
+  EXPECT_THAT(ErrorOf(test::ReadText(std::filesystem::path(SIMTREE_SOURCE_DIR) /
+                                     "fuzz/regressions/markers_json/number_overflow.json")),
+              HasSubstr("number overflow"));
+}
+
 TEST(TreeJson, RefusesToWriteAnInvalidTreeAndLeavesNoFile) {
   Tree t = test::SmallTree();
   t.branches[1].nodes[1].radius = 0.0;

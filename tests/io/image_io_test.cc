@@ -79,5 +79,15 @@ TEST(ImageIo, BadFilesAreClearErrors) {
   EXPECT_THAT(ErrorOf([&] { EncodePng(RgbImage()); }), HasSubstr("empty colour image"));
 }
 
+// fuzz/png_image's input: a DICOM file ("DICM" at byte 128) that OpenCV handed to GDCM, whose
+// reader asserted (abort). Only PNG and JPEG reach the decoder now.
+TEST(ImageIo, OnlyPngAndJpegReachTheDecoder) {
+  const std::filesystem::path dicom =
+      std::filesystem::path(SIMTREE_SOURCE_DIR) / "fuzz/regressions/png_image/dicom_assert.bin";
+  EXPECT_THAT(ErrorOf([&] { ReadDepthImage(dicom); }),
+              HasSubstr("dicom_assert.bin: expected a PNG or JPEG image, the file is neither"));
+  EXPECT_THAT(ErrorOf([&] { ReadColorImage(dicom); }), HasSubstr("the file is neither"));
+}
+
 }  // namespace
 }  // namespace simtree

@@ -1,5 +1,7 @@
 #include "simtree/io/point_cloud_io.h"
 
+#include <open3d/io/PointCloudIO.h>
+
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -59,6 +61,71 @@ TEST(PointCloudIo, BadFilesAreClearErrors) {
   EXPECT_THAT(ErrorOf(dir / "c.e57"), HasSubstr("expected a point cloud ending in"));
   test::WriteText(dir / "c.las", "x");
   EXPECT_THAT(ErrorOf(dir / "c.las"), HasSubstr("c.las: expected a LAS header"));
+}
+
+// Headers that claim more than their file holds are refused before Open3D allocates for them or
+// reads past them (fuzz/point_cloud_ply, fuzz/point_cloud_pcd; docs/fuzzing.md).
+TEST(PointCloudIo, HeadersClaimingMoreThanTheFileHoldsAreRefused) {
+  const auto dir = test::TempDir();
+  // Text with NULs: WriteText of a string built by appends (GCC 12 warns falsely on + chains).
+  auto write = [&](const char* name, const std::string& header, size_t zeros) {
+    std::string text = header;
+    text.append(zeros, '\0');
+    test::WriteText(dir / name, text);
+    return dir / name;
+  };
+  EXPECT_THAT(ErrorOf(write("billion.ply",
+                            "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\n"
+                            "property float x\nproperty float y\nproperty float z\nend_header\n",
+                            24)),
+              HasSubstr("billion.ply: header line 3: element \"vertex\" claims 1000000000 items "
+                        "of at least 12 bytes, but the file has 24 bytes after its header"));
+  const std::string pcd = "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 2\nHEIGHT 1\n";
+  EXPECT_THAT(ErrorOf(write("many.pcd", pcd + "POINTS 2000000000\nDATA binary\n", 24)),
+              HasSubstr("many.pcd: header line 8: the header claims 2000000000 points"));
+  EXPECT_THAT(
+      ErrorOf(write("count.pcd", "FIELDS x y z\nCOUNT 1 -1 1\nPOINTS 1\nDATA ascii\n1 2 3\n", 0)),
+      HasSubstr("count.pcd: header line 2: expected whole numbers for COUNT, got \"-1\""));
+  EXPECT_THAT(ErrorOf(write("size.pcd", "FIELDS x y z\nSIZE 4 3 4\nPOINTS 1\nDATA binary\n", 11)),
+              HasSubstr("expected SIZE 1, 2, 4 or 8, got 3"));
+  // Compressed data whose uncompressed size (8, little-endian after the sizes' 4) is not the
+  // points' 24 bytes: Open3D would read past its buffer.
+  std::string lie = pcd;
+  lie += "POINTS 2\nDATA binary_compressed\n";
+  lie.append(std::string("\x04\0\0\0\x08\0\0\0abcd", 12));
+  test::WriteText(dir / "lie.pcd", lie);
+  EXPECT_THAT(ErrorOf(dir / "lie.pcd"), HasSubstr("the compressed data claims 4 bytes (8 "
+                                                  "uncompressed) for 2 points of 12 bytes"));
+}
+
+// The fuzzers' own inputs (fuzz/regressions/): a billion-point PLY header (out of memory), and a
+// PCD whose mutated FIELDS line names normal_x and normal_y but not normal_z (Open3D wrote the
+// normals it had not allocated: a null write).
+TEST(PointCloudIo, TheFuzzersFindingsAreInputErrors) {
+  const std::filesystem::path regressions =
+      std::filesystem::path(SIMTREE_SOURCE_DIR) / "fuzz/regressions";
+  EXPECT_THAT(ErrorOf(regressions / "point_cloud_ply/billion_points.ply"),
+              HasSubstr("claims 1000000000 items"));
+  EXPECT_THAT(ErrorOf(regressions / "point_cloud_pcd/two_of_three_normals.pcd"),
+              HasSubstr("header line 3: expected all three of normal_x, normal_y and normal_z"));
+}
+
+TEST(PointCloudIo, HeaderChecksPassFilesThatHoldWhatTheyClaim) {
+  const auto dir = test::TempDir();
+  // The last value of an ASCII file needs no newline after it.
+  test::WriteText(dir / "a.ply",
+                  "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+                  "property float z\nend_header\n1 2 3\n4 5 6");
+  EXPECT_EQ(ReadPointCloud(dir / "a.ply").points_.size(), 2u);
+  test::WriteText(dir / "a.pcd", "FIELDS x y z\nPOINTS 2\nDATA ascii\n1 2 3\n4 5 6");
+  EXPECT_EQ(ReadPointCloud(dir / "a.pcd").points_.size(), 2u);
+  open3d::geometry::PointCloud cloud;
+  for (int i = 0; i < 50; ++i) cloud.points_.emplace_back(0, 0, 1);  // compresses well
+  using Option = open3d::io::WritePointCloudOption;
+  ASSERT_TRUE(
+      open3d::io::WritePointCloud((dir / "b.pcd").string(), cloud,
+                                  Option(Option::IsAscii::Binary, Option::Compressed::Compressed)));
+  EXPECT_EQ(ReadPointCloud(dir / "b.pcd").points_.size(), 50u);
 }
 
 TEST(PointCloudIo, PlyRoundTrip) {

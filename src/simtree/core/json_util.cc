@@ -35,6 +35,12 @@ nlohmann::json ParseJson(const std::string& text, const std::string& source) {
     throw InputError(source, fmt::format("line {}, column {}", line, column),
                      text.empty() ? "expected a JSON document, the file is empty"
                                   : fmt::format("invalid JSON ({})", what));
+  } catch (const nlohmann::json::out_of_range& e) {
+    // A number beyond a double's range ("1E4444"): the parser gives no position for it.
+    std::string what = e.what();
+    const size_t cut = what.find("] ");
+    if (cut != std::string::npos) what = what.substr(cut + 2);
+    throw InputError(source, "", fmt::format("invalid JSON ({})", what));
   }
 }
 

@@ -11,6 +11,7 @@
 
 #include "simtree/core/atomic_file.h"
 #include "simtree/core/error.h"
+#include "simtree/io/detail/cloud_header_check.h"
 #include "simtree/io/las_io.h"
 
 namespace fs = std::filesystem;
@@ -106,6 +107,12 @@ open3d::geometry::PointCloud ReadPointCloud(const fs::path& path, PointCloudRead
     cloud = ReadTextCloud(path, r);
   } else if (ext == ".ply" || ext == ".pcd") {
     if (fs::file_size(path) == 0) throw InputError(path.string(), "", "the file is empty");
+    // Open3D allocates what the header claims before reading: refuse what cannot be.
+    if (ext == ".ply") {
+      cloud_detail::CheckPlyHeader(path);
+    } else {
+      cloud_detail::CheckPcdHeader(path);
+    }
     open3d::io::ReadPointCloudOption option;
     option.remove_nan_points = false;
     option.remove_infinite_points = false;

@@ -1,0 +1,21 @@
+#pragma once
+// Checks of a PLY or PCD header before Open3D reads the file. Open3D's readers allocate what the
+// header claims before reading any data (a header claiming a billion points is 24 GB), and its
+// PCD reader trusts the header's field layout (a COUNT of -1 indexes before its buffers). These
+// refuse, with an InputError naming the file and the header line, a header that cannot describe
+// the file it heads; a header they do not understand is left to Open3D to refuse.
+
+#include <filesystem>
+
+namespace simtree::cloud_detail {
+
+// Every element's count times its smallest size on disk (its properties' sizes when binary, two
+// characters a value when ASCII) must fit in the bytes after the header.
+void CheckPlyHeader(const std::filesystem::path& path);
+
+// SIZE values of 1, 2, 4 or 8 and COUNT values of at least 1, one per field; the points (POINTS,
+// or WIDTH x HEIGHT, whichever Open3D takes) must fit in the bytes after the header; compressed
+// data must hold exactly the points and be no larger than the file holds.
+void CheckPcdHeader(const std::filesystem::path& path);
+
+}  // namespace simtree::cloud_detail
