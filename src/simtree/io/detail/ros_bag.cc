@@ -317,9 +317,9 @@ std::string RosBagReader::Read(const RosMessageRef& m, uint32_t max_bytes) {
 
 const char* RosReader::Take(size_t n) {
   if (n > bytes_.size() - at_) {
-    throw InputError(what_, fmt::format("byte {}", at_),
-                     fmt::format("expected {} more bytes, the message has {}", n,
-                                 bytes_.size() - at_));
+    throw InputError(
+        what_, fmt::format("byte {}", at_),
+        fmt::format("expected {} more bytes, the message has {}", n, bytes_.size() - at_));
   }
   const char* p = bytes_.data() + at_;
   at_ += n;
