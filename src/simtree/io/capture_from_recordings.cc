@@ -31,6 +31,27 @@ std::string SensorName(const AzureKinectReader& reader) {
   return "azure_kinect_" + mode;
 }
 
+// The sharpest still frame of a recording's scored frames (`motion_to_previous` -1 where not
+// measured): a frame's motion is the larger change to its measured neighbours (0 when it has
+// none). Fills everything but the frame's capture index and time; `best` is its position.
+ScanViewPick PickStillFrame(const fs::path& recording, const std::vector<double>& sharpness,
+                            const std::vector<double>& motion_to_previous,
+                            const CaptureFromOptions& options, int* best) {
+  const size_t n = sharpness.size();
+  std::vector<double> motion(n, 0.0);
+  for (size_t i = 0; i < n; ++i) {
+    motion[i] = std::max(0.0, motion_to_previous[i]);
+    if (i + 1 < n) motion[i] = std::max(motion[i], motion_to_previous[i + 1]);
+  }
+  ScanViewPick pick;
+  pick.recording = recording;
+  pick.candidates = static_cast<int>(n);
+  *best = azure_detail::PickStill(sharpness, motion, options.still_motion_grey, &pick.still);
+  pick.sharpness = sharpness[*best];
+  pick.motion_grey = motion[*best];
+  return pick;
+}
+
 // Pass 1: sharpness and motion of every complete capture; the chosen one's index.
 ScanViewPick ScoreScan(const fs::path& recording, const CaptureFromOptions& options) {
   AzureKinectReader reader(recording, options.reader);
@@ -57,22 +78,10 @@ ScanViewPick ScoreScan(const fs::path& recording, const CaptureFromOptions& opti
     throw InputError(recording.string(), "",
                      "expected at least one capture with both colour and depth, found none");
   }
-  // A capture's motion: the larger change to its measured neighbours (0 when it has none).
-  const size_t n = indices.size();
-  std::vector<double> motion(n, 0.0);
-  for (size_t i = 0; i < n; ++i) {
-    motion[i] = std::max(0.0, motion_to_previous[i]);
-    if (i + 1 < n) motion[i] = std::max(motion[i], motion_to_previous[i + 1]);
-  }
-  ScanViewPick pick;
-  pick.recording = recording;
-  pick.candidates = static_cast<int>(n);
-  const int best =
-      azure_detail::PickStill(sharpness, motion, options.still_motion_grey, &pick.still);
+  int best = 0;
+  ScanViewPick pick = PickStillFrame(recording, sharpness, motion_to_previous, options, &best);
   pick.capture = indices[best];
   pick.timestamp_us = times[best];
-  pick.sharpness = sharpness[best];
-  pick.motion_grey = motion[best];
   return pick;
 }
 
@@ -189,21 +198,10 @@ ScanViewPick ScoreSequenceScan(const fs::path& recording, const RgbdSequence& se
     progress.Advance();
   }
   progress.Done();
-  const size_t n = sharpness.size();
-  std::vector<double> motion(n, 0.0);
-  for (size_t i = 0; i < n; ++i) {
-    motion[i] = std::max(0.0, motion_to_previous[i]);
-    if (i + 1 < n) motion[i] = std::max(motion[i], motion_to_previous[i + 1]);
-  }
-  ScanViewPick pick;
-  pick.recording = recording;
-  pick.candidates = static_cast<int>(n);
-  const int best =
-      azure_detail::PickStill(sharpness, motion, options.still_motion_grey, &pick.still);
+  int best = 0;
+  ScanViewPick pick = PickStillFrame(recording, sharpness, motion_to_previous, options, &best);
   pick.capture = best;
   pick.timestamp_us = std::llround((sequence.time_s(best) - sequence.time_s(0)) * 1e6);
-  pick.sharpness = sharpness[best];
-  pick.motion_grey = motion[best];
   return pick;
 }
 

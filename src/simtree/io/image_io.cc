@@ -1,5 +1,7 @@
 #include "simtree/io/image_io.h"
 
+#include <string>
+
 #include <fmt/format.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -30,10 +32,14 @@ std::string DepthName(int cv_depth) {
 cv::Mat Decode(const fs::path& path) {
   const std::string bytes = ReadFile(path);  // IoError naming the file when it is missing
   if (bytes.empty()) throw InputError(path.string(), "", "expected an image, the file is empty");
-  // Only PNG and JPEG reach OpenCV: imdecode tries every decoder it has on anything else, and
-  // some abort on bad input (GDCM's DICOM reader asserted on a fuzzed file).
-  if (!bytes.starts_with("\x89PNG\r\n\x1a\n") && !bytes.starts_with("\xff\xd8\xff")) {
-    throw InputError(path.string(), "", "expected a PNG or JPEG image, the file is neither");
+  // Only PNG, JPEG and BMP (the authors' leaf textures) reach OpenCV: imdecode tries every decoder
+  // it has on anything else, and some abort on bad input (GDCM's DICOM reader asserted on a fuzzed
+  // file).
+  const bool known = bytes.starts_with("\x89PNG\r\n\x1a\n") || bytes.starts_with("\xff\xd8\xff") ||
+                     bytes.starts_with("BM");
+  if (!known) {
+    throw InputError(path.string(), "",
+                     "expected a PNG, JPEG or BMP image, the file is none of these");
   }
   const cv::Mat buffer(1, static_cast<int>(bytes.size()), CV_8U, const_cast<char*>(bytes.data()));
   cv::Mat image = cv::imdecode(buffer, cv::IMREAD_UNCHANGED);

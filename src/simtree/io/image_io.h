@@ -41,7 +41,7 @@ struct PngOptions {
   int compression = 1;
 };
 
-// Reads an 8-bit colour image (PNG or JPEG; grey and RGBA are converted to RGB). Throws
+// Reads an 8-bit colour image (PNG, JPEG or BMP; grey and RGBA are converted to RGB). Throws
 // InputError naming the file when it is missing, unreadable or not 8-bit.
 RgbImage ReadColorImage(const std::filesystem::path& path);
 // Reads a 16-bit single-channel PNG of millimetres. An 8-bit or colour image is refused (it cannot
