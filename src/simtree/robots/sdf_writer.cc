@@ -11,13 +11,10 @@
 namespace simtree::robots {
 namespace {
 
+using detail::kHingeLinkInertia;
+using detail::kHingeLinkMass;
 using detail::Num;
 using detail::Vec;
-
-// As in the URDF: the links between one segment's hinges carry next to nothing (SDF gives a link
-// without <inertial> 1 kg).
-constexpr double kHingeLinkMass = 1e-6;
-constexpr double kHingeLinkInertia = 1e-9;
 
 void Inertial(std::ostringstream& out, const Eigen::Vector3d& com, double mass,
               const Eigen::Matrix3d& i) {

@@ -11,13 +11,10 @@
 namespace simtree::robots {
 namespace {
 
+using detail::kHingeLinkInertia;
+using detail::kHingeLinkMass;
 using detail::Num;
 using detail::Vec;
-
-// The links between the hinges of one segment carry next to nothing: URDF joints have one axis
-// each, and some simulators refuse links without mass.
-constexpr double kHingeLinkMass = 1e-6;
-constexpr double kHingeLinkInertia = 1e-9;
 
 void Inertial(std::ostringstream& out, const Eigen::Vector3d& com, double mass,
               const Eigen::Matrix3d& i) {

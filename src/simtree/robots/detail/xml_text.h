@@ -13,4 +13,10 @@ std::string Vec(const Eigen::Vector3d& value);  // "x y z"
 // +Z onto `direction`.
 Eigen::Vector3d RpyFromZTo(const Eigen::Vector3d& direction);
 
+// URDF and SDF joints have one axis each, so a segment's hinges are joined by links of their
+// own; these carry next to nothing (some simulators refuse a link without mass, and SDF gives
+// one without <inertial> 1 kg).
+constexpr double kHingeLinkMass = 1e-6;     // kg
+constexpr double kHingeLinkInertia = 1e-9;  // kg m^2, about every axis
+
 }  // namespace simtree::robots::detail
