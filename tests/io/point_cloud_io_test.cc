@@ -98,14 +98,42 @@ TEST(PointCloudIo, HeadersClaimingMoreThanTheFileHoldsAreRefused) {
                                                   "uncompressed) for 2 points of 12 bytes"));
 }
 
-// The fuzzers' own inputs (fuzz/regressions/): a billion-point PLY header (out of memory), and a
-// PCD whose mutated FIELDS line names normal_x and normal_y but not normal_z (Open3D wrote the
-// normals it had not allocated: a null write).
+// Lines Open3D's rply would skip or split differently are refused by name, not left to rply.
+TEST(PointCloudIo, PlyHeaderLinesOutsideTheGrammarAreRefused) {
+  const auto dir = test::TempDir();
+  const std::string head = "ply\nformat ascii 1.0\nelement vertex 1\n";
+  const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
+  auto error = [&](const char* name, const std::string& text) {
+    test::WriteText(dir / name, text);
+    return ErrorOf(dir / name);
+  };
+  EXPECT_THAT(error("type.ply", head + "property vec3 x\n" + xyz + "end_header\n1 2 3\n"),
+              HasSubstr("type.ply: header line 4: expected \"format\""));
+  EXPECT_THAT(error("tab.ply", head + "property\vfloat x\n" + xyz + "end_header\n1 2 3\n"),
+              HasSubstr("tab.ply: header line 4: expected printable text"));
+  EXPECT_THAT(error("early.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n"),
+              HasSubstr("early.ply: header line 3: expected \"format\""));
+  EXPECT_THAT(error("open.ply", head + xyz), HasSubstr("open.ply: expected \"end_header\""));
+  EXPECT_THAT(error("magic.ply", "plx\n" + head.substr(4) + xyz + "end_header\n1 2 3\n"),
+              HasSubstr("magic.ply: header line 1: expected \"ply\""));
+  // Comments, obj_info, list properties and CRLF line ends are the grammar.
+  test::WriteText(dir / "ok.ply", "ply\r\nformat ascii 1.0\r\ncomment hi\r\nobj_info x\r\n" +
+                                      std::string("element vertex 1\r\n") + xyz +
+                                      "property list uchar int idx\r\nend_header\r\n1 2 3 0\r\n");
+  EXPECT_EQ(ReadPointCloud(dir / "ok.ply").points_.size(), 1u);
+}
+
+// The fuzzers' own inputs (fuzz/regressions/): a billion-point PLY header (out of memory), a PLY
+// whose "property obj_info" line rply skipped as a comment (Open3D then read outside its points:
+// a segfault), and a PCD whose mutated FIELDS line names normal_x and normal_y but not normal_z
+// (Open3D wrote the normals it had not allocated: a null write).
 TEST(PointCloudIo, TheFuzzersFindingsAreInputErrors) {
   const std::filesystem::path regressions =
       std::filesystem::path(SIMTREE_SOURCE_DIR) / "fuzz/regressions";
   EXPECT_THAT(ErrorOf(regressions / "point_cloud_ply/billion_points.ply"),
               HasSubstr("claims 1000000000 items"));
+  EXPECT_THAT(ErrorOf(regressions / "point_cloud_ply/property_without_type.ply"),
+              HasSubstr("header line 6: expected \"format\""));
   EXPECT_THAT(ErrorOf(regressions / "point_cloud_pcd/two_of_three_normals.pcd"),
               HasSubstr("header line 3: expected all three of normal_x, normal_y and normal_z"));
 }

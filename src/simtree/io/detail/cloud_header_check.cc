@@ -34,15 +34,36 @@ std::optional<int64_t> Count(const std::string& word) {
   return value;
 }
 
-// Bytes of a PLY scalar type; 1 for a name rply will refuse anyway (a lower bound either way).
-int PlyTypeBytes(const std::string& type) {
+// Bytes of each PLY scalar type (both the PLY 1.0 names and the sized ones rply takes).
+std::optional<int> PlyTypeBytes(const std::string& type) {
+  if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
   if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
   if (type == "int" || type == "uint" || type == "float" || type == "int32" || type == "uint32" ||
       type == "float32") {
     return 4;
   }
   if (type == "double" || type == "float64") return 8;
-  return 1;
+  return std::nullopt;
+}
+
+// A PLY header line's words, split as rply splits them (spaces, tabs and carriage returns only);
+// nothing when the line holds another control character, which rply and this check would read
+// differently.
+std::optional<std::vector<std::string>> PlyWords(const std::string& line) {
+  std::vector<std::string> out;
+  std::string word;
+  for (const char c : line) {
+    if (c == ' ' || c == '\t' || c == '\r') {
+      if (!word.empty()) out.push_back(std::move(word));
+      word.clear();
+    } else if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) {
+      return std::nullopt;
+    } else {
+      word.push_back(c);
+    }
+  }
+  if (!word.empty()) out.push_back(std::move(word));
+  return out;
 }
 
 // `count` items of at least `bytes` each must fit in `available` bytes (no overflow: both are
@@ -55,8 +76,11 @@ bool Fits(int64_t count, int64_t bytes, int64_t available) {
 
 void CheckPlyHeader(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
+  const std::string source = path.string();
   std::string line;
-  if (!std::getline(in, line) || Words(line) != std::vector<std::string>{"ply"}) return;
+  if (!std::getline(in, line) || PlyWords(line) != std::vector<std::string>{"ply"}) {
+    throw InputError(source, "header line 1", "expected \"ply\", the PLY magic line");
+  }
   const int64_t file_bytes = static_cast<int64_t>(fs::file_size(path));
   bool ascii = false;
   struct Element {
@@ -67,15 +91,20 @@ void CheckPlyHeader(const fs::path& path) {
   };
   std::vector<Element> elements;
   for (int number = 2; std::getline(in, line); ++number) {
-    const std::vector<std::string> w = Words(line);
+    const std::string where = fmt::format("header line {}", number);
+    const std::optional<std::vector<std::string>> words = PlyWords(line);
+    if (!words) throw InputError(source, where, "expected printable text in the PLY header");
+    const std::vector<std::string>& w = *words;
     if (w.empty()) continue;
-    if (w[0] == "end_header") {
+    const std::string& keyword = w[0];
+    if (keyword == "comment" || keyword == "obj_info") continue;
+    if (keyword == "end_header") {
       const int64_t header_end = static_cast<int64_t>(in.tellg());
       // + 1: the file's last value needs no separator after it.
       int64_t available = file_bytes - header_end + (ascii ? 1 : 0);
       for (const Element& e : elements) {
         if (!Fits(e.count, e.min_bytes, available)) {
-          throw InputError(path.string(), fmt::format("header line {}", e.line),
+          throw InputError(source, fmt::format("header line {}", e.line),
                            fmt::format("element \"{}\" claims {} items of at least {} bytes, but "
                                        "the file has {} bytes after its header",
                                        e.name, e.count, e.min_bytes, file_bytes - header_end));
@@ -84,22 +113,32 @@ void CheckPlyHeader(const fs::path& path) {
       }
       return;
     }
-    if (w[0] == "format" && w.size() >= 2) ascii = w[1] == "ascii";
-    if (w[0] == "element" && w.size() == 3) {
+    if (keyword == "format" && w.size() == 3) {
+      ascii = w[1] == "ascii";
+    } else if (keyword == "element" && w.size() == 3) {
       const std::optional<int64_t> count = Count(w[2]);
       if (!count) {
         throw InputError(
-            path.string(), fmt::format("header line {}", number),
+            source, where,
             fmt::format("expected a whole number of \"{}\" items, got \"{}\"", w[1], w[2]));
       }
       elements.push_back({w[1], *count, 0, number});
-    }
-    if (w[0] == "property" && !elements.empty() && w.size() >= 3) {
+    } else if (keyword == "property" && !elements.empty() &&
+               ((w.size() == 3 && PlyTypeBytes(w[1])) ||
+                (w.size() == 5 && w[1] == "list" && PlyTypeBytes(w[2]) && PlyTypeBytes(w[3])))) {
       // A list holds at least its length (an empty list); ASCII values take at least a digit and
       // a separator.
-      elements.back().min_bytes += ascii ? 2 : PlyTypeBytes(w[1] == "list" ? w[2] : w[1]);
+      elements.back().min_bytes += ascii ? 2 : *PlyTypeBytes(w.size() == 5 ? w[2] : w[1]);
+    } else {
+      // Open3D's reader (rply) skips some malformed lines and reads the rest differently.
+      throw InputError(source, where,
+                       fmt::format("expected \"format\", \"element NAME COUNT\", \"property TYPE "
+                                   "NAME\", \"property list TYPE TYPE NAME\" (after an element), "
+                                   "\"comment\" or \"end_header\", got \"{}\"",
+                                   line.substr(0, 80)));
     }
   }
+  throw InputError(source, "", "expected \"end_header\" to close the PLY header");
 }
 
 void CheckPcdHeader(const fs::path& path) {

@@ -3,14 +3,18 @@
 // header claims before reading any data (a header claiming a billion points is 24 GB), and its
 // PCD reader trusts the header's field layout (a COUNT of -1 indexes before its buffers). These
 // refuse, with an InputError naming the file and the header line, a header that cannot describe
-// the file it heads; a header they do not understand is left to Open3D to refuse.
+// the file it heads. A PLY header is read line by line as Open3D's rply reads it, and a line it
+// would skip or read differently (a property of an unknown type, a control character) is refused
+// too; a PCD header they do not understand is left to Open3D to refuse.
 
 #include <filesystem>
 
 namespace simtree::cloud_detail {
 
-// Every element's count times its smallest size on disk (its properties' sizes when binary, two
-// characters a value when ASCII) must fit in the bytes after the header.
+// The magic line, then only format, comment, obj_info, element and property lines of the PLY
+// grammar up to end_header; every element's count times its smallest size on disk (its
+// properties' sizes when binary, two characters a value when ASCII) must fit in the bytes after
+// the header.
 void CheckPlyHeader(const std::filesystem::path& path);
 
 // SIZE values of 1, 2, 4 or 8 and COUNT values of at least 1, one per field; the points (POINTS,
