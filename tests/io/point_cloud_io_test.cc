@@ -114,6 +114,9 @@ TEST(PointCloudIo, PlyHeaderLinesOutsideTheGrammarAreRefused) {
   EXPECT_THAT(error("early.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n"),
               HasSubstr("early.ply: header line 3: expected \"format\""));
   EXPECT_THAT(error("open.ply", head + xyz), HasSubstr("open.ply: expected \"end_header\""));
+  EXPECT_THAT(
+      error("eof.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 0\nend_header"),
+      HasSubstr("eof.ply: header line 4: expected a newline after \"end_header\""));
   EXPECT_THAT(error("magic.ply", "plx\n" + head.substr(4) + xyz + "end_header\n1 2 3\n"),
               HasSubstr("magic.ply: header line 1: expected \"ply\""));
   // Comments, obj_info, list properties and CRLF line ends are the grammar.
@@ -125,8 +128,9 @@ TEST(PointCloudIo, PlyHeaderLinesOutsideTheGrammarAreRefused) {
 
 // The fuzzers' own inputs (fuzz/regressions/): a billion-point PLY header (out of memory), a PLY
 // whose "property obj_info" line rply skipped as a comment (Open3D then read outside its points:
-// a segfault), and a PCD whose mutated FIELDS line names normal_x and normal_y but not normal_z
-// (Open3D wrote the normals it had not allocated: a null write).
+// a segfault), a PLY ending at "end_header" (rply's assertion), and a PCD whose mutated FIELDS line
+// names normal_x and normal_y but not normal_z (Open3D wrote the normals it had not allocated: a
+// null write).
 TEST(PointCloudIo, TheFuzzersFindingsAreInputErrors) {
   const std::filesystem::path regressions =
       std::filesystem::path(SIMTREE_SOURCE_DIR) / "fuzz/regressions";
@@ -134,6 +138,8 @@ TEST(PointCloudIo, TheFuzzersFindingsAreInputErrors) {
               HasSubstr("claims 1000000000 items"));
   EXPECT_THAT(ErrorOf(regressions / "point_cloud_ply/property_without_type.ply"),
               HasSubstr("header line 6: expected \"format\""));
+  EXPECT_THAT(ErrorOf(regressions / "point_cloud_ply/end_header_at_eof.ply"),
+              HasSubstr("expected a newline after \"end_header\""));
   EXPECT_THAT(ErrorOf(regressions / "point_cloud_pcd/two_of_three_normals.pcd"),
               HasSubstr("header line 3: expected all three of normal_x, normal_y and normal_z"));
 }

@@ -99,6 +99,8 @@ void CheckPlyHeader(const fs::path& path) {
     const std::string& keyword = w[0];
     if (keyword == "comment" || keyword == "obj_info") continue;
     if (keyword == "end_header") {
+      // rply reads the data from after the newline; without one it reads before its buffer.
+      if (in.eof()) throw InputError(source, where, "expected a newline after \"end_header\"");
       const int64_t header_end = static_cast<int64_t>(in.tellg());
       // + 1: the file's last value needs no separator after it.
       int64_t available = file_bytes - header_end + (ascii ? 1 : 0);
