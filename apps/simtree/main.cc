@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include "simtree/core/error.h"
+#include "simtree/core/interrupt.h"
 #include "simtree/core/log.h"
 #include "simtree/core/progress.h"
 #include "verbs.h"
@@ -18,6 +19,8 @@
 #endif
 
 int main(int argc, char** argv) {
+  // Ctrl-C stops long work at its next step with nothing half-written (core/interrupt.h).
+  simtree::InstallInterruptHandlers();
   CLI::App app{
       "simtree: a real tree from one consumer RGB-D camera, as a simulation-ready tree "
       "(branch hierarchy of generalized cylinders with measured natural frequencies and damping "
@@ -77,6 +80,9 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  } catch (const simtree::Interrupted& e) {
+    std::fprintf(stderr, "simtree: %s\n", e.what());
+    return e.exit_code();
   } catch (const simtree::Error& e) {
     std::fprintf(stderr, "simtree: error: %s\n", e.what());
     return e.exit_code();

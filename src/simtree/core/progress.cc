@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "simtree/core/interrupt.h"
+
 namespace simtree {
 namespace {
 
@@ -23,6 +25,7 @@ Progress::Progress(std::string stage, int64_t total, std::string unit)
     : stage_(std::move(stage)),
       total_(total),
       unit_(std::move(unit)),
+      owner_(std::this_thread::get_id()),
       start_(std::chrono::steady_clock::now()),
       last_report_(start_),
       terminal_(::isatty(STDERR_FILENO) != 0) {}
@@ -33,6 +36,7 @@ void Progress::SetEnabled(bool enabled) { g_enabled = enabled; }
 
 void Progress::Advance(int64_t units) {
   done_ += units;
+  if (std::this_thread::get_id() == owner_) ThrowIfInterrupted();
   if (!g_enabled) return;
   const auto now = std::chrono::steady_clock::now();
   std::unique_lock lock(mutex_, std::try_to_lock);
@@ -65,7 +69,9 @@ void Progress::Report(bool final) {
     line += " " + unit_;
   }
   line += fmt::format(", {:.1f} {}/s", rate, unit_);
-  if (final) {
+  if (final && InterruptRequested()) {
+    line += fmt::format(", stopped after {}", FormatSeconds(elapsed));
+  } else if (final) {
     line += fmt::format(", done in {}", FormatSeconds(elapsed));
   } else if (total_ > 0 && rate > 0) {
     line += fmt::format(", {} left", FormatSeconds((total_ - done) / rate));

@@ -69,9 +69,10 @@ StageRecord StageFromJson(const JsonNode& s) {
   StageRecord r;
   r.name = s.String("name");
   r.status = s.String("status");
-  if (r.status != "done" && r.status != "failed" && r.status != "not run") {
+  if (r.status != "done" && r.status != "failed" && r.status != "interrupted" &&
+      r.status != "not run") {
     s.FailAt(Member(s.at(), "status"),
-             fmt::format("expected done, failed or not run, got \"{}\"", r.status));
+             fmt::format("expected done, failed, interrupted or not run, got \"{}\"", r.status));
   }
   if (const auto reused = s.Find("reused")) r.reused = reused->Bool();
   if (const auto wall = s.Find("wall_s")) r.wall_s = wall->Number();

@@ -9,8 +9,9 @@
 //                "outputs": ["preprocess"], "input_fingerprint": "9f0c...",
 //                "output_fingerprint": "41aa..."}, ...]}
 //
-// status: "done", "failed" or "not run". A fingerprint is 16 hex digits of a 64-bit hash over
-// the files' relative paths and bytes (a folder: every file under it, in name order).
+// status: "done", "failed", "interrupted" (Ctrl-C) or "not run". A fingerprint is 16 hex digits
+// of a 64-bit hash over the files' relative paths and bytes (a folder: every file under it, in name
+// order).
 
 #include <cstdint>
 #include <filesystem>
@@ -40,7 +41,7 @@ class StageError : public Error {
 
 struct StageRecord {
   std::string name;
-  std::string status = "not run";  // "done", "failed", "not run"
+  std::string status = "not run";  // "done", "failed", "interrupted", "not run"
   bool reused = false;             // done by an earlier run, its outputs kept
   double wall_s = 0.0;
   std::string summary;                       // one line

@@ -9,6 +9,7 @@
 
 #include "simtree/core/atomic_file.h"
 #include "simtree/core/error.h"
+#include "simtree/core/interrupt.h"
 #include "simtree/core/progress.h"
 #include "simtree/pipeline/stage.h"
 
@@ -219,6 +220,11 @@ struct Runner {
     const auto start = std::chrono::steady_clock::now();
     try {
       record.summary = RunStage(stage, context);
+    } catch (const Interrupted& e) {
+      record.status = "interrupted";
+      record.wall_s = Seconds(start);
+      WriteManifest(now, manifest_path);
+      throw;
     } catch (const std::exception& e) {
       record.status = "failed";
       record.wall_s = Seconds(start);

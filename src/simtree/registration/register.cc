@@ -9,6 +9,7 @@
 #include <oneapi/tbb/parallel_for.h>
 
 #include "simtree/core/error.h"
+#include "simtree/core/interrupt.h"
 #include "simtree/core/option_checks.h"
 #include "simtree/registration/detail/pose_graph.h"
 
@@ -57,12 +58,15 @@ std::vector<PairEdge> RegisterViewPairs(const std::vector<RegistrationView>& vie
     edge.target = t;
     pairs.push_back(edge);
   }
+  // Ctrl-C stops between pairs (TBB carries the exception out of the loop).
   oneapi::tbb::parallel_for(size_t{0}, pairs.size(), [&](size_t e) {
+    ThrowIfInterrupted();
     PairEdge& edge = pairs[e];
     edge.result = RegisterPairFirstAttempt(views[edge.source], views[edge.target], options.pair);
   });
   DeclineChainedPairs(views, options, pairs);
   oneapi::tbb::parallel_for(size_t{0}, pairs.size(), [&](size_t e) {
+    ThrowIfInterrupted();
     PairEdge& edge = pairs[e];
     RetryPair(views[edge.source], views[edge.target], options.pair, edge.result);
   });

@@ -13,6 +13,7 @@
 #include <spdlog/spdlog.h>
 
 #include "simtree/core/error.h"
+#include "simtree/core/interrupt.h"
 #include "simtree/core/option_checks.h"
 #include "simtree/io/capture.h"
 #include "simtree/io/image_io.h"
@@ -86,7 +87,7 @@ class PickWindow {
   // One frame: input (the script's or the user's), drawing, swap. False once finished or
   // cancelled.
   bool Frame() {
-    if (glfwWindowShouldClose(window_)) cancelled_ = true;
+    if (glfwWindowShouldClose(window_) || InterruptRequested()) cancelled_ = true;  // as Escape
     if (finished_ || cancelled_) return false;
     glfwPollEvents();
     if (Scripted()) RunScript();

@@ -12,6 +12,7 @@
 #include <spdlog/spdlog.h>
 
 #include "simtree/core/error.h"
+#include "simtree/core/interrupt.h"
 #include "simtree/core/option_checks.h"
 #include "simtree/core/units.h"
 #include "simtree/dynamics/live_pull.h"
@@ -256,7 +257,8 @@ void Viewer::Impl::CountFrame(double frame_s, double simulate_s, double draw_s, 
 
 bool Viewer::Frame() {
   Impl& m = *impl_;
-  if (m.quit || glfwWindowShouldClose(m.window)) return false;
+  // Ctrl-C in the terminal closes the window like its close button.
+  if (m.quit || glfwWindowShouldClose(m.window) || InterruptRequested()) return false;
   const auto start = Clock::now();
   const double wall_dt = Seconds(m.last_frame, start);
   m.last_frame = start;
