@@ -635,9 +635,11 @@ ReconstructionScale DeriveScale(const CloudScale& measured, const Reconstruction
   if (s.neighbour_radius_m <= 0) {
     s.neighbour_radius_m = std::max({1.5 * neighbourhood, 2.0 * effective, 4.0 * roughness});
   }
-  // Bands a little narrower than a link (finer samples along a branch), but wide enough that a
-  // band holds a connected ring of points; the finest band resolves branches of ~1 cm radius.
-  if (s.band_width_m <= 0) s.band_width_m = std::max(0.75 * s.neighbour_radius_m, 0.015);
+  // Bands half a link wide: a link spans at least three spacings, so a band still holds a
+  // connected ring, and a twig leaving its parent gets its own band pieces (and samples) within a
+  // link of the fork; the step and the kill distance follow, so a twig's samples are not reached
+  // from the parent. The finest band resolves branches of ~1 cm radius.
+  if (s.band_width_m <= 0) s.band_width_m = std::max(0.5 * s.neighbour_radius_m, 0.015);
   if (s.step_m <= 0) s.step_m = s.band_width_m;
   if (s.influence_radius_m <= 0) s.influence_radius_m = 4.0 * s.band_width_m;
   if (s.kill_radius_m <= 0) s.kill_radius_m = 1.5 * s.band_width_m;
