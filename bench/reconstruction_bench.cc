@@ -10,7 +10,8 @@
 //   bench_reconstruction --misses           where the model misses tree1/tree7's points by 2-10 cm,
 //                                           and what AdTree's skeleton has there
 //   bench_reconstruction --ablation [NAME]  each improvement switched off in turn (or only those
-//                                           whose name contains NAME)
+//                                           whose name contains NAME; "from:NAME": that variant
+//                                           and the ones after it)
 //   bench_reconstruction --score CLOUD TRUE_TREE [OUT_PNG]
 //                                           reconstructs CLOUD and scores it against TRUE_TREE
 //   bench_reconstruction --synth [--pictures DIR] [--variant NAME] [--verbose] CAPTURE...
@@ -251,6 +252,8 @@ reconstruction::ReconstructionOptions VariantOptions(const std::string& name) {
 }
 
 void Ablation(const std::string& only) {
+  const std::string from = only.rfind("from:", 0) == 0 ? only.substr(5) : "";
+  bool started = false;
   struct Scan {
     std::string name;
     Tree truth;
@@ -276,8 +279,10 @@ void Ablation(const std::string& only) {
       "error | length error | real scans: within 2 cm | mean distance | time (stand-in) "
       "|\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
   for (const Variant& v : Variants()) {
-    if (!only.empty() && std::string(v.name).find(only) == std::string::npos &&
-        std::string(v.name) != "all improvements") {
+    const std::string name = v.name;
+    if (from.empty()
+            ? !only.empty() && name.find(only) == std::string::npos && name != "all improvements"
+            : !(started = started || name.find(from) != std::string::npos)) {
       continue;
     }
     MeanScores mean;
@@ -291,16 +296,23 @@ void Ablation(const std::string& only) {
       t += r.times.total_s / n;
     }
     double within = 0, real_mean = 0;
+    std::string failed;  // real scans that grow no tree under this variant (counted as 0%)
     for (size_t k = 0; k < real.size(); ++k) {
-      const reconstruction::ReconstructionResult r =
-          reconstruction::ReconstructTree(real[k].points_, kRealScans[k], v.options);
-      const eval::CloudFitScores fit = eval::ScoreAgainstCloud(r.tree, real[k].points_);
-      within += fit.share_within / real.size();
-      real_mean += fit.mean_distance_m / real.size();
+      try {
+        const reconstruction::ReconstructionResult r =
+            reconstruction::ReconstructTree(real[k].points_, kRealScans[k], v.options);
+        const eval::CloudFitScores fit = eval::ScoreAgainstCloud(r.tree, real[k].points_);
+        within += fit.share_within / real.size();
+        real_mean += fit.mean_distance_m / real.size();
+      } catch (const InputError&) {
+        failed += std::string(failed.empty() ? " (fails on " : ", ") + kRealScans[k];
+      }
     }
-    std::printf("| %s | %.3f | %.3f | %.1f mm | %.3f | %.3f | %.3f | %.1f%% | %.1f mm | %.2f s |\n",
-                v.name, mean.recall, mean.precision, 1e3 * mean.distance, mean.radius, mean.trunk,
-                mean.abs_length, 100 * within, 1e3 * real_mean, t);
+    if (!failed.empty()) failed += ")";
+    std::printf(
+        "| %s | %.3f | %.3f | %.1f mm | %.3f | %.3f | %.3f | %.1f%%%s | %.1f mm | %.2f s |\n",
+        v.name, mean.recall, mean.precision, 1e3 * mean.distance, mean.radius, mean.trunk,
+        mean.abs_length, 100 * within, failed.c_str(), 1e3 * real_mean, t);
     std::fflush(stdout);
   }
 }
