@@ -192,6 +192,8 @@ std::vector<Variant> Variants() {
   add("all improvements", [](reconstruction::ReconstructionOptions&) {});
   add("raw points as attraction points",
       [](reconstruction::ReconstructionOptions& o) { o.medial_samples = false; });
+  add("bands 0.75 links wide (before 3a6878d)",
+      [](reconstruction::ReconstructionOptions& o) { o.band_per_link = 0.75; });
   add("no arc merging", [](reconstruction::ReconstructionOptions& o) { o.merge_per_spread = 0.0; });
   add("no perception cone", [](reconstruction::ReconstructionOptions& o) {
     o.colonization.perception_half_angle_rad = 4.0;
