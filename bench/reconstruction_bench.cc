@@ -4,10 +4,14 @@
 //
 //   bench_reconstruction                    timings: the three real scans, a 200,000-point cloud
 //   bench_reconstruction --tables           stand-in accuracy (trees x noise x seeds)
-//   bench_reconstruction --real             the real scans: fit, branch counts, time, and
+//   bench_reconstruction --real [--variant NAME]
+//                                           the real scans: fit, branch counts, time, and
 //                                           AdTree's skeletons scored the same way
+//   bench_reconstruction --misses           where the model misses tree1/tree7's points by 2-10 cm,
+//                                           and what AdTree's skeleton has there
 //   bench_reconstruction --ablation [NAME]  each improvement switched off in turn (or only those
-//                                           whose name contains NAME)
+//                                           whose name contains NAME; "from:NAME": that variant
+//                                           and the ones after it)
 //   bench_reconstruction --score CLOUD TRUE_TREE [OUT_PNG]
 //                                           reconstructs CLOUD and scores it against TRUE_TREE
 //   bench_reconstruction --synth [--pictures DIR] [--variant NAME] [--verbose] CAPTURE...
@@ -35,6 +39,7 @@
 #include <spdlog/spdlog.h>
 
 #include "reconstruction/standin_scan.h"
+#include "reconstruction_misses.h"
 #include "simtree/core/error.h"
 #include "simtree/core/tree_file.h"
 #include "simtree/eval/reconstruction_metrics.h"
@@ -187,6 +192,8 @@ std::vector<Variant> Variants() {
   add("all improvements", [](reconstruction::ReconstructionOptions&) {});
   add("raw points as attraction points",
       [](reconstruction::ReconstructionOptions& o) { o.medial_samples = false; });
+  add("bands 0.75 links wide (before 3a6878d)",
+      [](reconstruction::ReconstructionOptions& o) { o.band_per_link = 0.75; });
   add("no arc merging", [](reconstruction::ReconstructionOptions& o) { o.merge_per_spread = 0.0; });
   add("no perception cone", [](reconstruction::ReconstructionOptions& o) {
     o.colonization.perception_half_angle_rad = 4.0;
@@ -247,6 +254,8 @@ reconstruction::ReconstructionOptions VariantOptions(const std::string& name) {
 }
 
 void Ablation(const std::string& only) {
+  const std::string from = only.rfind("from:", 0) == 0 ? only.substr(5) : "";
+  bool started = false;
   struct Scan {
     std::string name;
     Tree truth;
@@ -272,8 +281,10 @@ void Ablation(const std::string& only) {
       "error | length error | real scans: within 2 cm | mean distance | time (stand-in) "
       "|\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
   for (const Variant& v : Variants()) {
-    if (!only.empty() && std::string(v.name).find(only) == std::string::npos &&
-        std::string(v.name) != "all improvements") {
+    const std::string name = v.name;
+    if (from.empty()
+            ? !only.empty() && name.find(only) == std::string::npos && name != "all improvements"
+            : !(started = started || name.find(from) != std::string::npos)) {
       continue;
     }
     MeanScores mean;
@@ -287,16 +298,23 @@ void Ablation(const std::string& only) {
       t += r.times.total_s / n;
     }
     double within = 0, real_mean = 0;
+    std::string failed;  // real scans that grow no tree under this variant (counted as 0%)
     for (size_t k = 0; k < real.size(); ++k) {
-      const reconstruction::ReconstructionResult r =
-          reconstruction::ReconstructTree(real[k].points_, kRealScans[k], v.options);
-      const eval::CloudFitScores fit = eval::ScoreAgainstCloud(r.tree, real[k].points_);
-      within += fit.share_within / real.size();
-      real_mean += fit.mean_distance_m / real.size();
+      try {
+        const reconstruction::ReconstructionResult r =
+            reconstruction::ReconstructTree(real[k].points_, kRealScans[k], v.options);
+        const eval::CloudFitScores fit = eval::ScoreAgainstCloud(r.tree, real[k].points_);
+        within += fit.share_within / real.size();
+        real_mean += fit.mean_distance_m / real.size();
+      } catch (const InputError&) {
+        failed += std::string(failed.empty() ? " (fails on " : ", ") + kRealScans[k];
+      }
     }
-    std::printf("| %s | %.3f | %.3f | %.1f mm | %.3f | %.3f | %.3f | %.1f%% | %.1f mm | %.2f s |\n",
-                v.name, mean.recall, mean.precision, 1e3 * mean.distance, mean.radius, mean.trunk,
-                mean.abs_length, 100 * within, 1e3 * real_mean, t);
+    if (!failed.empty()) failed += ")";
+    std::printf(
+        "| %s | %.3f | %.3f | %.1f mm | %.3f | %.3f | %.3f | %.1f%%%s | %.1f mm | %.2f s |\n",
+        v.name, mean.recall, mean.precision, 1e3 * mean.distance, mean.radius, mean.trunk,
+        mean.abs_length, 100 * within, failed.c_str(), 1e3 * real_mean, t);
     std::fflush(stdout);
   }
 }
@@ -373,7 +391,7 @@ Tree ReadAdTreeSkeleton(const std::string& path) {
 }
 
 // Ours and AdTree's skeleton scored with the same metric on the same points.
-void RealTable() {
+void RealTable(const reconstruction::ReconstructionOptions& options) {
   std::printf(
       "| scan | points | branches (by level) | wood | trunk base radius (TreeQSM) | unreached | "
       "mean distance | median | within 2 cm | beyond 10 cm | time | AdTree: mean | median | "
@@ -383,7 +401,7 @@ void RealTable() {
   for (const RealScan& scan : kRealTableScans) {
     const auto cloud = ReadPointCloud(SharedData(std::string("real-scans/") + scan.cloud));
     const reconstruction::ReconstructionResult result =
-        reconstruction::ReconstructTree(cloud.points_, scan.cloud, {});
+        reconstruction::ReconstructTree(cloud.points_, scan.cloud, options);
     const eval::CloudFitScores fit = eval::ScoreAgainstCloud(result.tree, cloud.points_);
     std::string levels;
     for (size_t l = 0; l < fit.branches_by_level.size(); ++l) {
@@ -418,6 +436,34 @@ void RealTable() {
         1e3 * fit.mean_distance_m, 1e3 * fit.median_distance_m, 100 * fit.share_within,
         beyond(result.tree), result.times.total_s, adtree.c_str());
     std::fflush(stdout);
+  }
+}
+
+// The 2-10 cm misses of the scans AdTree ran on, against AdTree's skeleton at the same places.
+void MissesTables() {
+  for (const RealScan& scan : kRealTableScans) {
+    if (!*scan.adtree) continue;
+    const auto cloud = ReadPointCloud(SharedData(std::string("real-scans/") + scan.cloud));
+    const reconstruction::ReconstructionResult result =
+        reconstruction::ReconstructTree(cloud.points_, scan.cloud, {});
+    const Tree theirs =
+        ReadAdTreeSkeleton(SharedData(std::string("real-scans/adtree/") + scan.adtree));
+    bench::Stages stages;
+    for (const auto& a : result.attraction) stages.samples.push_back(a.position);
+    // The grown skeleton's edges every 5 mm.
+    for (const auto& n : result.grown.nodes) {
+      if (n.parent < 0) continue;
+      const Eigen::Vector3d a = result.grown.nodes[n.parent].position, d = n.position - a;
+      const int count = std::max(1, static_cast<int>(std::ceil(d.norm() / 0.005)));
+      for (int k = 0; k <= count; ++k) stages.grown.push_back(a + (double(k) / count) * d);
+    }
+    stages.grown_near_m = 0.02;
+    stages.sample_near_m = result.parameters.band_width_m;
+    bench::PrintMisses(scan.cloud, result.tree, theirs, cloud.points_,
+                       2 * result.measured.spacing_m, stages);
+    std::printf("band width %.1f mm, step %.1f mm, kill %.1f mm, spacing %.1f mm\n",
+                1e3 * result.parameters.band_width_m, 1e3 * result.parameters.step_m,
+                1e3 * result.parameters.kill_radius_m, 1e3 * result.measured.spacing_m);
   }
 }
 
@@ -547,7 +593,13 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (std::strcmp(argv[i], "--real") == 0) {
-      simtree::RealTable();
+      const bool variant = i + 2 < argc && std::strcmp(argv[i + 1], "--variant") == 0;
+      simtree::RealTable(variant ? simtree::VariantOptions(argv[i + 2])
+                                 : simtree::reconstruction::ReconstructionOptions{});
+      return 0;
+    }
+    if (std::strcmp(argv[i], "--misses") == 0) {
+      simtree::MissesTables();
       return 0;
     }
     if (std::strcmp(argv[i], "--score") == 0 && i + 2 < argc) {

@@ -254,6 +254,8 @@ TEST(Reconstruct, NonsenseOptionsAreRefusedByName) {
             "options: trunk.slices: expected >= 1, got 0");
   EXPECT_EQ(message([](auto& o) { o.trunk.max_radius_m = 0.001; }),
             "options: trunk.max_radius_m: expected >= min_radius_m (0.004), got 0.001");
+  EXPECT_EQ(message([](auto& o) { o.band_per_link = 0.0; }),
+            "options: band_per_link: expected > 0, got 0");
   EXPECT_EQ(message([](auto& o) { o.trunk_fit_max_m = 0.1; }),
             "options: trunk_fit_max_m: expected >= trunk_fit_min_m (0.3), got 0.1");
   EXPECT_EQ(message([&](auto& o) { o.colonization.direction_smoothing = nan; }),

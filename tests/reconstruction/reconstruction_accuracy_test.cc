@@ -39,17 +39,24 @@ INSTANTIATE_TEST_SUITE_P(Noise, AuthorsTree,
                          ::testing::Combine(::testing::Values("tree01", "tree02"),
                                             ::testing::Values(2.0, 3.0)));
 
-class RealScan : public ::testing::TestWithParam<const char*> {};
+// A real scan and the share of its points the model must hold within 2 cm: a few points below
+// what the defaults reach (docs/benchmarks.md), so a step that loses twigs fails here.
+struct RealScanCase {
+  const char* name;
+  double min_share_within;
+};
+class RealScan : public ::testing::TestWithParam<RealScanCase> {};
 
 TEST_P(RealScan, ReconstructsACompleteConnectedTreeThatFitsThePoints) {
-  const auto cloud = ReadPointCloud(test::SharedData(std::string("real-scans/") + GetParam()));
-  const ReconstructionResult r = ReconstructTree(cloud.points_, GetParam());
+  const auto [name, min_share_within] = GetParam();
+  const auto cloud = ReadPointCloud(test::SharedData(std::string("real-scans/") + name));
+  const ReconstructionResult r = ReconstructTree(cloud.points_, name);
   EXPECT_TRUE(FindProblems(r.tree).empty());
   ASSERT_TRUE(r.trunk.found) << r.trunk.note;
   // Connected by construction (every branch hangs on its parent); complete: most points are near
   // the model, and the tree has a real hierarchy.
   const eval::CloudFitScores fit = eval::ScoreAgainstCloud(r.tree, cloud.points_);
-  EXPECT_GE(fit.share_within, 0.4) << eval::FormatCloudFit(fit);
+  EXPECT_GE(fit.share_within, min_share_within) << eval::FormatCloudFit(fit);
   EXPECT_LE(fit.median_distance_m, 0.03) << eval::FormatCloudFit(fit);
   EXPECT_GE(fit.branches, 30) << eval::FormatCloudFit(fit);
   ASSERT_GE(fit.branches_by_level.size(), 3u);
@@ -57,8 +64,11 @@ TEST_P(RealScan, ReconstructsACompleteConnectedTreeThatFitsThePoints) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scans, RealScan,
-                         ::testing::Values("tree1.xyz", "tree7.xyz", "rtwig_cloud.xyz",
-                                           "itsme_tree1.xyz", "itsme_tree2.xyz"));
+                         ::testing::Values(RealScanCase{"tree1.xyz", 0.63},
+                                           RealScanCase{"tree7.xyz", 0.80},
+                                           RealScanCase{"rtwig_cloud.xyz", 0.98},
+                                           RealScanCase{"itsme_tree1.xyz", 0.53},
+                                           RealScanCase{"itsme_tree2.xyz", 0.65}));
 
 // The tall ITSMe trees: the trunk's base radius within 15% of TreeQSM's (real-scans/README.md).
 class TallScan : public ::testing::TestWithParam<std::pair<const char*, double>> {};

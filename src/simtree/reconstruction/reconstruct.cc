@@ -48,7 +48,7 @@ TreePoints SeparateFromGround(std::vector<Eigen::Vector3d> prepared,
                               const ReconstructionOptions& options) {
   TreePoints tree;
   tree.measured = MeasureCloudScale(prepared, {.seed = options.seed});
-  tree.scale = DeriveScale(tree.measured, options.scale);
+  tree.scale = DeriveScale(tree.measured, options.scale, options.band_per_link);
   if (options.remove_ground) {
     GroundOptions ground_options = options.ground;
     ground_options.tolerance_m = std::max(ground_options.tolerance_m, tree.scale.trunk_threshold_m);
@@ -79,7 +79,7 @@ TreePoints SeparateFromGround(std::vector<Eigen::Vector3d> prepared,
   }
   if (above_ground.size() >= 10) {
     tree.measured = MeasureCloudScale(above_ground, {.seed = options.seed});
-    tree.scale = DeriveScale(tree.measured, options.scale);
+    tree.scale = DeriveScale(tree.measured, options.scale, options.band_per_link);
   }
   tree.points = std::move(above_ground);
   return tree;
@@ -104,7 +104,7 @@ WorkingCloud MakeWorkingCloud(const TreePoints& tree, const std::string& source,
   if (voxel > tree.scale.voxel_m * 1.001) {
     ReconstructionScale given = options.scale;
     given.voxel_m = voxel;
-    working.scale = DeriveScale(tree.measured, given);
+    working.scale = DeriveScale(tree.measured, given, options.band_per_link);
   }
   const ReconstructionScale& s = working.scale;
   spdlog::debug(
@@ -604,6 +604,7 @@ void ReconstructionOptions::Validate() const {
   CheckShare("trunk_fit_share", trunk_fit_share);
   CheckPositive("trunk_fit_min_m", trunk_fit_min_m);
   CheckOrdered("trunk_fit_min_m", trunk_fit_min_m, "trunk_fit_max_m", trunk_fit_max_m);
+  CheckPositive("band_per_link", band_per_link);
   CheckNonNegative("merge_per_spread", merge_per_spread);
   CheckNested("colonization", colonization);
   CheckNested("pruning", pruning);
@@ -624,7 +625,8 @@ std::string ToString(TrunkStretch stretch) {
   return "unknown";
 }
 
-ReconstructionScale DeriveScale(const CloudScale& measured, const ReconstructionScale& given) {
+ReconstructionScale DeriveScale(const CloudScale& measured, const ReconstructionScale& given,
+                                double band_per_link) {
   ReconstructionScale s = given;
   const double spacing = std::max(measured.spacing_m, 1e-4);
   const double roughness = measured.roughness_m;
@@ -635,9 +637,11 @@ ReconstructionScale DeriveScale(const CloudScale& measured, const Reconstruction
   if (s.neighbour_radius_m <= 0) {
     s.neighbour_radius_m = std::max({1.5 * neighbourhood, 2.0 * effective, 4.0 * roughness});
   }
-  // Bands a little narrower than a link (finer samples along a branch), but wide enough that a
-  // band holds a connected ring of points; the finest band resolves branches of ~1 cm radius.
-  if (s.band_width_m <= 0) s.band_width_m = std::max(0.75 * s.neighbour_radius_m, 0.015);
+  // Bands half a link wide (band_per_link): a link spans at least three spacings, so a band still
+  // holds a connected ring, and a twig leaving its parent gets its own band pieces (and samples)
+  // within a link of the fork; the step and the kill distance follow, so a twig's samples are not
+  // reached from the parent. The finest band resolves branches of ~1 cm radius.
+  if (s.band_width_m <= 0) s.band_width_m = std::max(band_per_link * s.neighbour_radius_m, 0.015);
   if (s.step_m <= 0) s.step_m = s.band_width_m;
   if (s.influence_radius_m <= 0) s.influence_radius_m = 4.0 * s.band_width_m;
   if (s.kill_radius_m <= 0) s.kill_radius_m = 1.5 * s.band_width_m;

@@ -79,6 +79,8 @@ struct ReconstructionOptions {
   double trunk_fit_max_m = 1.3;   // ... and at most
   // Attraction points: medial samples of geodesic bands (true) or the working points themselves.
   bool medial_samples = true;
+  // Derived band width in neighbour links (when scale.band_width_m is 0); DeriveScale.
+  double band_per_link = 0.5;
   // Arcs of one band merged into rings (geodesic_samples.h); 0 turns merging off.
   double merge_per_spread = 0.9;
   ColonizationOptions colonization;  // its lengths come from `scale`
@@ -145,7 +147,9 @@ struct ReconstructionResult {
 };
 
 // The lengths derived from a measured spacing and roughness (where `given` has zeros).
-ReconstructionScale DeriveScale(const CloudScale& measured, const ReconstructionScale& given);
+// `band_per_link`: the band width in neighbour links (ReconstructionOptions::band_per_link).
+ReconstructionScale DeriveScale(const CloudScale& measured, const ReconstructionScale& given,
+                                double band_per_link = 0.5);
 
 // Throws OptionError for invalid options, InputError naming `source` for input that is not a
 // tree cloud (cloud_preparation.h) and when no tree can be grown from the base.
