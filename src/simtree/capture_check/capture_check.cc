@@ -7,6 +7,7 @@
 #include "simtree/core/error.h"
 #include "simtree/core/option_checks.h"
 #include "simtree/io/capture.h"
+#include "simtree/tracking/detail/color_model.h"
 
 namespace fs = std::filesystem;
 
@@ -50,7 +51,8 @@ void CheckThresholds::Validate() const {
 
 void CaptureCheckOptions::Validate() const {
   CheckNested("thresholds", thresholds);
-  CheckOption(!tape_color.empty(), "options", "tape_color", "expected a colour name, got none");
+  // The tracker's own check of the name: refused before any work.
+  tracking::detail::ColorModelFromName(tape_color);
 }
 
 Status CaptureCheckResult::Worst() const {

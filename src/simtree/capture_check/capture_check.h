@@ -38,7 +38,7 @@ struct CheckThresholds {
   double fail_frame_rate_hz = 15;       // below: fail
   double warn_duration_s = 10;          // a shorter pull record: warn
   double fail_dropped_share = 0.05;     // more frames dropped: fail (any dropped: warn)
-  double warn_tree_depth_share = 0.85;  // less of the tree with depth: warn
+  double warn_tree_depth_share = 0.75;  // less of the tree with depth: warn
   double fail_tree_depth_share = 0.5;   // fail
   double min_distance_m = 0.5;          // the depth camera's near limit: fail
   double warn_distance_m = 3.5;         // farther: warn
