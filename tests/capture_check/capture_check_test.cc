@@ -112,6 +112,12 @@ TEST(CaptureCheck, BadInputIsAClearError) {
               CheckCapture(QuickCapture(), bad);
             }).find("thresholds.warn_tape_px"),
             std::string::npos);
+  CaptureCheckOptions purple;
+  purple.tape_color = "purple";
+  EXPECT_NE(test::ErrorOf<InputError>([&] {
+              CheckCapture(QuickCapture(), purple);
+            }).find("--color: expected auto, red"),
+            std::string::npos);
 }
 
 }  // namespace
