@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <string>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "quick_capture.h"
@@ -96,6 +97,33 @@ TEST(CaptureCheck, AMissingViewWarns) {
       << views.message;
   EXPECT_NE(FormatTable(r).find("warn scans (scan views): 3 views"), std::string::npos)
       << FormatTable(r);
+}
+
+// The pull stream as an Open3D folder (color/, depth/ in millimetres, intrinsic.json): checked
+// through capture-from, with the conversion's own count of drops.
+TEST(CaptureCheck, RecordingsAreCheckedThroughCaptureFrom) {
+  const fs::path rec = test::TempDir() / "pull_open3d";
+  fs::create_directories(rec / "color");
+  fs::create_directories(rec / "depth");
+  const fs::path pull = QuickCapture() / "pull";
+  for (int i = 0; i < 12; ++i) {
+    const std::string name = fmt::format("{:06d}.png", i);
+    fs::copy_file(pull / "color" / name, rec / "color" / name);
+    fs::copy_file(pull / "depth" / name, rec / "depth" / name);
+  }
+  const CameraIntrinsics k = ReadIntrinsicsJson(pull / "intrinsics.json");
+  test::WriteText(rec / "intrinsic.json",
+                  fmt::format(R"({{"width": {}, "height": {}, "intrinsic_matrix": [{}, 0, 0, 0, )"
+                              R"({}, 0, {}, {}, 1]}})",
+                              k.width, k.height, k.fx, k.fy, k.cx, k.cy));
+  CaptureFromOptions from;
+  from.pull = rec;
+  const CaptureCheckResult r = CheckRecordings(from, NoRegistration());
+  EXPECT_EQ(r.capture, rec);
+  EXPECT_EQ(Find(r, "recording drops", "pull recording").status, Status::kOk);
+  EXPECT_NEAR(Find(r, "frame rate", "pull").value, 30, 0.01);
+  EXPECT_GE(Find(r, "tape markers", "pull frame 0").value, 8) << FormatTable(r);
+  EXPECT_EQ(Find(r, "scan views", "scans").status, Status::kFail);
 }
 
 TEST(CaptureCheck, BadInputIsAClearError) {

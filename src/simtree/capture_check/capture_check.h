@@ -22,6 +22,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "simtree/io/capture_from_recordings.h"
+
 namespace simtree::capture_check {
 
 inline constexpr const char* kCaptureCheckFormat = "simtree.capture_check";
@@ -83,6 +85,13 @@ struct CaptureCheckResult {
 // a capture folder or one of its small files is broken; a bad image or view is a failed check.
 CaptureCheckResult CheckCapture(const std::filesystem::path& capture,
                                 const CaptureCheckOptions& options = {});
+
+// Recordings in any layout `capture-from` reads (Azure .mkv, RealSense .bag, TUM, Open3D),
+// converted into a temporary capture folder and checked there, plus "recording drops": pull
+// captures the conversion left out (the camera's dropped frames, captures lacking colour or
+// depth). Throws InputError as CaptureFromRecordings does.
+CaptureCheckResult CheckRecordings(const CaptureFromOptions& recordings,
+                                   const CaptureCheckOptions& options = {});
 
 // A table for people, one check a line, with the fixes after it.
 std::string FormatTable(const CaptureCheckResult& result);

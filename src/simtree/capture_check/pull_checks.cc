@@ -26,6 +26,13 @@ void CheckTiming(const PullStream& pull, const CheckThresholds& t, std::vector<C
     dropped += skipped;
     longest = std::max(longest, skipped);
   }
+  if (n < 2) {
+    out->push_back(Failed("frame rate", "pull",
+                          fmt::format("{} frame: record the whole pull test, still tree, pull, "
+                                      "release and 10 s or more of free swinging",
+                                      n)));
+    return;
+  }
   out->push_back(Grade("frame rate", "pull", rate, "fps",
                        {Better::kHigher, t.warn_frame_rate_hz, t.fail_frame_rate_hz},
                        fmt::format("{} frames at {:.1f} fps", n, rate),
