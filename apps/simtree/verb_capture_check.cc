@@ -6,6 +6,7 @@
 
 #include "cli_common.h"
 #include "simtree/capture_check/capture_check.h"
+#include "simtree/core/option_checks.h"
 #include "simtree/io/intrinsics_file.h"
 #include "verbs.h"
 
@@ -40,8 +41,7 @@ void RegisterCaptureCheck(CLI::App& app) {
       "(docs/capturing.md). Exits 1 when a check fails, 0 otherwise");
   verb->add_option("inputs", args->inputs,
                    "A capture folder, or scan recordings in any layout capture-from reads (.mkv, "
-                   ".bag, TUM, Open3D folders), checked through a temporary capture folder")
-      ->required();
+                   ".bag, TUM, Open3D folders), checked through a temporary capture folder");
   verb->add_option("--pull", args->pull, "The pull test's recording (with recordings)")
       ->check(CLI::ExistingPath);
   verb->add_option("--layout", args->layout, "The recordings' layout, as capture-from's")
@@ -59,12 +59,15 @@ void RegisterCaptureCheck(CLI::App& app) {
       ->capture_default_str();
   verb->add_flag(
       "--no-register", [args](int64_t) { args->options.register_views = false; },
-      "Skip the view coverage (it registers the views: a few seconds a pair)");
+      "Skip the view coverage (it registers the views: most of the check's time)");
   verb->footer(Examples({"simtree capture-check capture/",
                          "simtree capture-check capture/ --json > check.json",
                          "simtree capture-check north.mkv east.mkv south.mkv west.mkv --pull "
                          "pull.mkv   # recordings, before capture-from"}));
   verb->callback([args] {
+    if (args->inputs.empty() && args->pull.empty()) {
+      throw OptionError("inputs", "expected a capture folder, scan recordings or --pull");
+    }
     const bool folder =
         args->pull.empty() && args->inputs.size() == 1 && IsCaptureFolder(args->inputs.front());
     capture_check::CaptureCheckResult result;
