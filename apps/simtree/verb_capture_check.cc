@@ -6,19 +6,29 @@
 
 #include "cli_common.h"
 #include "simtree/capture_check/capture_check.h"
+#include "simtree/core/error.h"
 #include "simtree/core/option_checks.h"
 #include "simtree/io/intrinsics_file.h"
+#include "simtree/io/recording_layout.h"
 #include "verbs.h"
 
 namespace simtree::cli {
 
 namespace {
 
-// A folder with capture.json, scans/ or pull/ (else the inputs are recordings).
-bool IsCaptureFolder(const std::filesystem::path& p) {
-  return std::filesystem::is_directory(p) &&
-         (std::filesystem::exists(p / "capture.json") || std::filesystem::exists(p / "scans") ||
-          std::filesystem::exists(p / "pull"));
+// A capture folder, or what is no recording either (a missing path, an empty folder): checked as a
+// capture folder, whose errors say what one holds.
+bool CheckAsCaptureFolder(const std::filesystem::path& p) {
+  if (std::filesystem::exists(p / "capture.json") || std::filesystem::exists(p / "scans") ||
+      std::filesystem::exists(p / "pull")) {
+    return true;
+  }
+  try {
+    DetectLayout(p);
+    return false;
+  } catch (const InputError&) {
+    return true;
+  }
 }
 
 }  // namespace
@@ -68,8 +78,8 @@ void RegisterCaptureCheck(CLI::App& app) {
     if (args->inputs.empty() && args->pull.empty()) {
       throw OptionError("inputs", "expected a capture folder, scan recordings or --pull");
     }
-    const bool folder =
-        args->pull.empty() && args->inputs.size() == 1 && IsCaptureFolder(args->inputs.front());
+    const bool folder = args->pull.empty() && args->inputs.size() == 1 &&
+                        CheckAsCaptureFolder(args->inputs.front());
     capture_check::CaptureCheckResult result;
     if (folder) {
       result = capture_check::CheckCapture(args->inputs.front(), args->options);

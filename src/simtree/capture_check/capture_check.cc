@@ -83,7 +83,8 @@ void RequireCaptureFolder(const fs::path& root) {
       !fs::exists(root / "pull")) {
     throw InputError(root.string(), "",
                      "not a capture folder: no capture.json, scans/ or pull/ in it "
-                     "(docs/formats.md, \"Capture folder\")");
+                     "(docs/formats.md, \"Capture folder\"), nor a recording capture-from reads "
+                     "(an Azure .mkv, a RealSense .bag, a TUM or an Open3D folder)");
   }
 }
 
