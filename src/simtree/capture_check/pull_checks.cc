@@ -42,7 +42,7 @@ void CheckTiming(const PullStream& pull, const CheckThresholds& t, std::vector<C
                        {Better::kHigher, t.warn_duration_s, t.warn_duration_s},
                        fmt::format("{:.1f} s recorded", duration),
                        "record until the branches are still again (10 s or more after the "
-                       "release): short free decays overestimate light damping"));
+                       "release): a short free decay resolves light damping poorly"));
   const double share = n > 0 ? static_cast<double>(dropped) / (dropped + n) : 0;
   out->push_back(Grade("dropped frames", "pull", share, "%",
                        {Better::kLower, 0, t.fail_dropped_share},
