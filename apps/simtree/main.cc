@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
       "(branch hierarchy of generalized cylinders with measured natural frequencies and damping "
       "ratios).\n\n"
       "Pipeline: capture-from (Azure .mkv, RealSense .bag, TUM, Open3D) | synth -> capture folder\n"
+      "          capture-check: what to fix in a capture before the run\n"
       "          scans -> preprocess -> register -> reconstruct -> static tree\n"
       "          pull-test stream -> track -> identify -> materials\n"
       "          static tree + materials -> build -> simulate / view / render / export\n"
@@ -47,6 +48,7 @@ int main(int argc, char** argv) {
   using namespace simtree::cli;
   RegisterCaptureFrom(app);
   RegisterCaptureExport(app);
+  RegisterCaptureCheck(app);
   RegisterSynth(app);
   RegisterPreprocess(app);
   RegisterRegister(app);

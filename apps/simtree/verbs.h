@@ -27,5 +27,6 @@ void RegisterMesh(CLI::App& app);
 void RegisterInfo(CLI::App& app);
 void RegisterCaptureFrom(CLI::App& app);
 void RegisterCaptureExport(CLI::App& app);
+void RegisterCaptureCheck(CLI::App& app);
 
 }  // namespace simtree::cli
