@@ -70,5 +70,32 @@ TEST(ColorModel, FitFollowsTheTapeAroundTheInitPixels) {
   EXPECT_TRUE(fit.Contains(190, 60, 30));
 }
 
+TEST(ColorModel, ExtendsAwayFromTheBarkTowardsASkyMixedTape) {
+  // Orange-brown bark everywhere (hue +25, saturation 0.3) and, at the click, a dark tape that
+  // chroma mixed with sky turned magenta (hue -30, saturation 0.55, value 60).
+  RgbImage image(40, 40, 0);
+  for (int y = 0; y < 40; ++y) {
+    for (int x = 0; x < 40; ++x) {
+      image.at(x, y, 0) = 120;
+      image.at(x, y, 1) = 99;
+      image.at(x, y, 2) = 84;
+    }
+  }
+  for (int y = 18; y < 21; ++y) {
+    image.at(20, y, 0) = 60;
+    image.at(20, y, 1) = 27;
+    image.at(20, y, 2) = 44;
+  }
+  const TapeColorModel red = ColorModelFromName("red");
+  EXPECT_FALSE(red.Contains(60, 27, 44));
+  const TapeColorModel fit = ExtendAwayFromBackground(red, image, {Eigen::Vector2d(20, 19)}, 3);
+  EXPECT_EQ(fit.extra_side, -1);
+  EXPECT_NEAR(fit.extra_hue_deg, 30.0 - red.hue_core_deg, 1.0);
+  EXPECT_TRUE(fit.Contains(60, 27, 44));
+  // The bark's side is untouched: a saturated orange stays out.
+  EXPECT_FALSE(fit.Contains(150, 109, 68));
+  EXPECT_FALSE(fit.Contains(120, 99, 84));
+}
+
 }  // namespace
 }  // namespace simtree::tracking::detail

@@ -50,6 +50,34 @@ TEST(Detection, CrossingBandsAtDifferentDepthsSplitIntoTwo) {
   EXPECT_NEAR(z[1], far.z(), 0.01);
 }
 
+TEST(Detection, ABranchReadingWhereTheTapeHasFewDepthPixels) {
+  // A thin tape whose own depth pixels are holes but two that read what lies behind it (the
+  // sensor mixes them), on a branch whose pixels around the tape read right.
+  test::DrawnStream s;
+  const Eigen::Vector3d p(0.0123, -0.0371, 1.6);
+  RgbdImage image = test::DrawFrame(s, {p});
+  const auto box = test::DrawnBox(s, p);
+  const uint16_t surface = static_cast<uint16_t>(std::lround(1000.0 * (p.z() - 0.85 * s.radius_m)));
+  int fliers = 0;
+  for (int y = int(box[1]) - 3; y <= int(box[1] + box[3]) + 3; ++y) {
+    for (int x = int(box[0]) - 1; x <= int(box[0] + box[2]) + 1; ++x) {
+      const bool tape = image.depth.at(x, y) == surface;
+      image.depth.at(x, y) = !tape ? surface : (fliers++ < 2 ? 1900 : 0);
+    }
+  }
+  const std::vector<Detection> found = DetectAll(image);
+  ASSERT_EQ(found.size(), 1u);
+  const Detection& d = found[0];
+  ASSERT_TRUE(d.has_depth);
+  EXPECT_GT(std::abs(d.position.z() - p.z()), 0.2);  // the tape's own reading is the flier's
+  ASSERT_TRUE(d.has_branch_depth);
+  Eigen::Vector3d again;
+  ASSERT_TRUE(RemeasureNear(d, image.intrinsics, p.z(), 0.03, &again));
+  EXPECT_LT((again - p).norm(), 0.006);
+  // A prediction the branch does not fit gets nothing.
+  EXPECT_FALSE(RemeasureNear(d, image.intrinsics, p.z() + 0.2, 0.03, &again));
+}
+
 TEST(Detection, RobustDepthIgnoresFlyingPixelsAndHoles) {
   DepthImage depth(5, 1);
   depth.pixels = {1500, 1502, 0, 1501, 3000};  // a hole and a background pixel

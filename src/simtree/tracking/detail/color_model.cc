@@ -70,11 +70,19 @@ double TapeColorModel::MinSaturationAt(double hue_distance_deg) const {
   return min_saturation + t * std::max(0.0, edge_saturation - min_saturation);
 }
 
+double TapeColorModel::EffectiveHueDistance(double hue) const {
+  double signed_d = std::fmod(hue - hue_deg + 540.0, 360.0) - 180.0;  // (-180, 180]
+  if (extra_hue_deg > 0.0 && signed_d * extra_side > 0.0) {
+    signed_d = std::max(0.0, std::abs(signed_d) - extra_hue_deg);
+  }
+  return std::abs(signed_d);
+}
+
 bool TapeColorModel::Contains(uint8_t r, uint8_t g, uint8_t b) const {
   float h, s, v;
   RgbToHsv(r, g, b, &h, &s, &v);
   if (v < min_value) return false;
-  const double d = HueDistance(h, hue_deg);
+  const double d = EffectiveHueDistance(h);
   return d <= hue_tolerance_deg && s >= MinSaturationAt(d);
 }
 
@@ -82,7 +90,7 @@ float TapeColorModel::Weight(uint8_t r, uint8_t g, uint8_t b) const {
   float h, s, v;
   RgbToHsv(r, g, b, &h, &s, &v);
   if (v < 0.5 * min_value) return 0.0f;
-  const double d = HueDistance(h, hue_deg);
+  const double d = EffectiveHueDistance(h);
   const double least = MinSaturationAt(std::min(d, hue_tolerance_deg));
   const float low = static_cast<float>(0.7 * least);
   const float full = static_cast<float>(std::max(full_saturation, least + 0.05));
@@ -95,9 +103,10 @@ float TapeColorModel::Weight(uint8_t r, uint8_t g, uint8_t b) const {
 
 std::string TapeColorModel::Describe() const {
   return fmt::format(
-      "hue {:.0f} +- {:.0f} deg, saturation >= {:.2f} (all tape from {:.2f}), "
-      "value >= {:.0f}",
-      hue_deg, hue_tolerance_deg, min_saturation, full_saturation, min_value);
+      "hue {:.0f} +- {:.0f} deg ({:+.0f} deg on the {} side), saturation >= {:.2f} (all tape "
+      "from {:.2f}), value >= {:.0f}",
+      hue_deg, hue_tolerance_deg, extra_hue_deg, extra_side > 0 ? "larger-hue" : "smaller-hue",
+      min_saturation, full_saturation, min_value);
 }
 
 TapeColorModel ColorModelFromName(const std::string& name) {
@@ -162,7 +171,59 @@ TapeColorModel FitColorModel(const TapeColorModel& prior, const RgbImage& image,
   model.min_saturation = std::clamp(0.6 * Quantile(sats, 0.1), prior.min_saturation, 0.6);
   model.full_saturation = std::clamp(Quantile(sats, 0.5), model.min_saturation + 0.05, 0.95);
   model.min_value = std::clamp(0.5 * Quantile(values, 0.1), 12.0, prior.min_value);
-  return model;
+  return ExtendAwayFromBackground(model, image, pixels, radius);
+}
+
+TapeColorModel ExtendAwayFromBackground(const TapeColorModel& model, const RgbImage& image,
+                                        const std::vector<Eigen::Vector2d>& pixels, int radius,
+                                        double max_extra_deg) {
+  constexpr double kLooseHueDeg = 60.0;
+  constexpr double kBackgroundSaturation = 0.15;  // below it a pixel's hue is noise
+  const auto signed_hue = [&](float h) {
+    return std::fmod(h - model.hue_deg + 540.0, 360.0) - 180.0;
+  };
+  std::vector<double> tape_hues, background;
+  // The background near the tape's hue: the scene's weakly saturated pixels within the loose
+  // interval (bark, for a red tape orange-brown), over the whole frame so the few tape pixels
+  // mixed with sky do not decide.
+  for (int y = 0; y < image.height; y += 2) {
+    for (int x = 0; x < image.width; x += 2) {
+      float h, s, v;
+      RgbToHsv(image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2), &h, &s, &v);
+      const double sh = signed_hue(h);
+      if (std::abs(sh) <= kLooseHueDeg && s >= kBackgroundSaturation && s < model.min_saturation &&
+          v >= model.min_value) {
+        background.push_back(sh);
+      }
+    }
+  }
+  for (const Eigen::Vector2d& p : pixels) {
+    const int u0 = static_cast<int>(std::lround(p.x()));
+    const int v0 = static_cast<int>(std::lround(p.y()));
+    double best_s = -1.0, best_hue = 0.0;
+    for (int y = std::max(0, v0 - radius); y <= std::min(image.height - 1, v0 + radius); ++y) {
+      for (int x = std::max(0, u0 - radius); x <= std::min(image.width - 1, u0 + radius); ++x) {
+        float h, s, v;
+        RgbToHsv(image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2), &h, &s, &v);
+        const double sh = signed_hue(h);
+        if (std::abs(sh) > kLooseHueDeg || s < model.min_saturation || v < model.min_value)
+          continue;
+        if (s > best_s) {
+          best_s = s;
+          best_hue = sh;
+        }
+      }
+    }
+    if (best_s >= 0.0) tape_hues.push_back(best_hue);
+  }
+  if (tape_hues.empty() || background.empty()) return model;
+  const int side = Quantile(background, 0.5) > 0.0 ? -1 : 1;
+  double farthest = 0.0;
+  for (double h : tape_hues) farthest = std::max(farthest, h * side);
+  TapeColorModel out = model;
+  out.extra_side = side;
+  out.extra_hue_deg = std::clamp(farthest - model.hue_core_deg, 0.0, max_extra_deg);
+  return out;
 }
 
 }  // namespace simtree::tracking::detail

@@ -28,6 +28,14 @@ struct TapeColorModel {
   double min_value = 28.0;          // max of R, G, B (0-255)
   double hue_core_deg = 8.0;        // within this of the centre min_saturation applies ...
   double edge_saturation = 0.75;    // ... rising linearly to this at hue_tolerance_deg
+  // The interval and its cone shifted outwards by this on one side (`extra_side` +1: towards
+  // larger hues, -1: smaller): where the init frame's tapes lie away from the bark (FitColorModel).
+  double extra_hue_deg = 0.0;
+  int extra_side = -1;
+
+  // A pixel's hue distance from the centre as the interval sees it: on the extended side the
+  // extension is taken off.
+  double EffectiveHueDistance(double hue_deg) const;
 
   // The least saturation of a tape pixel `hue_distance_deg` from the centre.
   double MinSaturationAt(double hue_distance_deg) const;
@@ -53,9 +61,24 @@ TapeColorModel ColorModelFromName(const std::string& name);
 // `image`: the hue centre becomes their circular median, the tolerance and thresholds follow their
 // spread, never looser than the prior (the windows also hold bark, which may be reddish). Returns
 // the prior unchanged when fewer than `min_samples` tape pixels are found. `samples_found`
-// (optional) gets how many were used.
+// (optional) gets how many were used. Then the interval is extended on the side away from the
+// background (ExtendAwayFromBackground).
 TapeColorModel FitColorModel(const TapeColorModel& prior, const RgbImage& image,
                              const std::vector<Eigen::Vector2d>& pixels, int radius,
                              int min_samples = 12, int* samples_found = nullptr);
+
+// A thin tape's colour mixes with what is beside it: MJPEG sends chroma at half the width, so a
+// tape 2-4 px wide against sky reads 15-40 degrees from its hue towards blue (magenta for red)
+// and dark (value 40-80): on synth's camera-colour streams 20% of the missed visible samples had
+// no pixel of the model's colour at all, their most tape-like pixel at -30 to 0 degrees. Bark
+// pulls the other way (orange), where the cone must stay. Per init pixel, the most saturated pixel
+// within `radius` whose hue is within 60 degrees of the centre and that has the least saturation
+// and value is taken as its tape; the background is the median signed hue of the frame's weakly
+// saturated pixels (0.15 up to the least saturation) within those 60 degrees. The interval grows on
+// the side opposite the background by the farthest such tape hue past the core (at most
+// `max_extra_deg`); nothing when the tapes all fit.
+TapeColorModel ExtendAwayFromBackground(const TapeColorModel& model, const RgbImage& image,
+                                        const std::vector<Eigen::Vector2d>& pixels, int radius,
+                                        double max_extra_deg = 30.0);
 
 }  // namespace simtree::tracking::detail

@@ -44,6 +44,10 @@ struct Detection {
   double front_m = 0.0;                                // the measured front's depth (m)
   std::vector<double> depths_m;                        // the clean tape pixels' depths, sorted (m)
   double depth_quantile = 0.25;                        // the quantile taken as the front
+  // The branch's axis point from the depths of the blob and its ring, when the tape itself has
+  // few depth pixels (a second reading for RemeasureNear).
+  bool has_branch_depth = false;
+  Eigen::Vector3d branch_position = Eigen::Vector3d::Zero();
 
   std::array<double, 4> Box() const { return shape.Box(); }
 };
@@ -59,7 +63,8 @@ std::vector<double> TapeCoverage(const Blob& blob, const RgbImage& color, BlobDe
 
 // The 3D centre measured again from only the tape depths that agree (within `window_m`) with a
 // predicted axis depth `z_axis`: what a marker partly hidden behind a twig, whose tape pixels mix
-// their depth with the twig's, still says about itself. False when too few pixels agree.
+// their depth with the twig's, still says about itself; failing that, the branch's reading
+// (`branch_position`) when it lies within `window_m`. False when neither agrees.
 bool RemeasureNear(const Detection& det, const CameraIntrinsics& intrinsics, double z_axis,
                    double window_m, Eigen::Vector3d* position);
 

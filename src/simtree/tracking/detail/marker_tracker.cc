@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include "simtree/tracking/detail/hungarian.h"
 
@@ -62,6 +64,39 @@ void MarkerTracker::PredictAll(double dt) {
   }
 }
 
+void MarkerTracker::FieldPredict() {
+  // A branch carries its markers together: a marker's displacement from its rest pose is close to
+  // that of the markers nearest it at rest. A lost marker's last position says little after a
+  // release's swing (30 px a frame); its neighbours' displacements say where it went, and they
+  // tell its tape from a neighbour's when both come back (identity swaps on acer_rubrum).
+  constexpr int kNeighbours = 3;
+  for (Marker& m : markers_) {
+    m.has_field = false;
+    if (!m.started) continue;
+    std::vector<std::pair<double, Eigen::Vector3d>> near;
+    for (const Marker& o : markers_) {
+      if (&o == &m || !o.started || o.coast != 0) continue;
+      near.emplace_back((o.motion.rest() - m.motion.rest()).norm(),
+                        o.last_position - o.motion.rest());
+    }
+    if (near.empty()) continue;
+    const size_t k = std::min<size_t>(kNeighbours, near.size());
+    std::partial_sort(near.begin(), near.begin() + k, near.end(),
+                      [](const auto& a, const auto& b) { return a.first < b.first; });
+    Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+    double total = 0.0;
+    for (size_t n = 0; n < k; ++n) {
+      const double w = 1.0 / (near[n].first + 0.05);  // 5 cm: neighbours on one branch weigh alike
+      shift += w * near[n].second;
+      total += w;
+    }
+    const Eigen::Vector3d p = m.motion.rest() + shift / total;
+    if (p.z() <= 0.0) continue;
+    m.has_field = true;
+    m.field_pixel = intrinsics_.Project(p);
+  }
+}
+
 std::vector<SearchWindow> MarkerTracker::Windows() const {
   std::vector<SearchWindow> windows;
   const int w = intrinsics_.width, h = intrinsics_.height;
@@ -74,6 +109,7 @@ std::vector<SearchWindow> MarkerTracker::Windows() const {
       const double r = options_.reacquire_radius_px * Scale();
       windows.push_back(WindowAround(m.pixel, r, w, h));
       windows.push_back(WindowAround(m.rest_pixel, r, w, h));
+      if (m.has_field) windows.push_back(WindowAround(m.field_pixel, r, w, h));
     }
   }
   return windows;
@@ -88,7 +124,8 @@ double MarkerTracker::Cost(const Marker& m, const Detection& det) const {
     // Found again (or never found yet): near its last pixel or its rest pixel, in the image.
     const double gate =
         (active ? options_.search_radius_px : options_.reacquire_radius_px) * Scale();
-    const double d2 = std::min((det.center - m.pixel).norm(), (det.center - m.rest_pixel).norm());
+    double d2 = std::min((det.center - m.pixel).norm(), (det.center - m.rest_pixel).norm());
+    if (m.has_field) d2 = std::min(d2, (det.center - m.field_pixel).norm());
     if (d2 > gate) return kForbidden;
     double cost = (d2 / gate) * (d2 / gate);
     if (m.started && det.has_depth) {
@@ -168,12 +205,25 @@ bool MarkerTracker::OwnedByAnother(int i, const Detection& det) const {
     const Marker& o = markers_[j];
     if (static_cast<int>(j) == i) continue;
     const bool active = (o.started || first_frame_) && o.coast <= options_.max_coast_frames;
-    if (!active) continue;
+    if (!active) {
+      // A lost marker owns what lies far nearer where its neighbours put it.
+      if (o.has_field && (det.center - o.field_pixel).norm() < kFirstFrameOwnerRatio * own) {
+        return true;
+      }
+      continue;
+    }
     const double ratio = o.started ? kOwnerRatio : kFirstFrameOwnerRatio;
-    if ((det.center - o.pixel).norm() >= ratio * own) continue;
+    const double theirs = (det.center - o.pixel).norm();
+    if (theirs >= ratio * own) continue;
+    // Far nearer the other's prediction, the image decides: a tape's depth may jump to what lies
+    // behind it for a frame (acer_rubrum seed 2: marker 10 took marker 8's tape that way).
+    if (o.started && theirs < kFirstFrameOwnerRatio * own) return true;
+    const double gate_z = options_.gate_mm / 1000.0;
+    Eigen::Vector3d again;
     const bool depth_fits =
         !tracked || !o.started || !det.has_depth ||
-        std::abs(det.position.z() - o.motion.position().z()) <= options_.gate_mm / 1000.0;
+        std::abs(det.position.z() - o.motion.position().z()) <= gate_z ||
+        RemeasureNear(det, intrinsics_, o.motion.position().z(), gate_z, &again);
     if (depth_fits) return true;
   }
   return false;
@@ -276,6 +326,7 @@ MarkerFrameResult MarkerTracker::Unmeasured(Marker& m) {
 
 std::vector<MarkerFrameResult> MarkerTracker::Step(const RgbdImage& image, double dt) {
   if (!first_frame_) PredictAll(dt);
+  FieldPredict();
   const std::vector<Blob> blobs = detector_.Find(image, Windows());
   std::vector<Detection> detections;
   detections.reserve(blobs.size());

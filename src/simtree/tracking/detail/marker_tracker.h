@@ -46,10 +46,15 @@ class MarkerTracker {
     BandModel band;               // the tape band's shape, for its box
     double typical_weight = 0.0;  // running tape weight when fully visible
     int coast = 0;                // frames since last measured
-    int age = 0;                  // frames since start
+    // Where the rest of the tree puts it: its rest position moved as its nearest measured
+    // neighbours moved (FieldPredict), projected; valid when `has_field`.
+    bool has_field = false;
+    Eigen::Vector2d field_pixel = Eigen::Vector2d::Zero();
+    int age = 0;  // frames since start
   };
 
   void PredictAll(double dt);
+  void FieldPredict();
   std::vector<SearchWindow> Windows() const;
   double Cost(const Marker& marker, const Detection& det) const;
   std::vector<int> Assign(const std::vector<Detection>& detections);
