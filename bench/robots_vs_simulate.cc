@@ -68,9 +68,19 @@ void CompareBranch(const simtree::Tree& tree, const std::filesystem::path& xml, 
   mj.sample_hz = kRate;
   mj.record_sites = {mj.pull_site};
   const auto probe = simtree::robots::RunMujocoPull(xml, mj);
-  const size_t held = static_cast<size_t>(std::lround((kRelease - 0.01) * kRate));
-  const double probe_shift = (probe.positions[0][held] - probe.positions[0][0]).dot(direction);
-  const double modal_shift = (recorder.positions[held] - recorder.positions[0]).dot(direction);
+  // Mean displacement along the pull over the hold (both still ring while held).
+  const auto mean_shift = [&](const std::vector<Eigen::Vector3d>& track) {
+    double sum = 0.0;
+    int n = 0;
+    for (size_t i = 0; i < track.size() && i < probe.times.size(); ++i) {
+      if (probe.times[i] < kHold || probe.times[i] >= kRelease) continue;
+      sum += (track[i] - track[0]).dot(direction);
+      ++n;
+    }
+    return sum / std::max(n, 1);
+  };
+  const double probe_shift = mean_shift(probe.positions[0]);
+  const double modal_shift = mean_shift(recorder.positions);
   mj.force *= modal_shift / probe_shift;
   const auto run = simtree::robots::RunMujocoPull(xml, mj);
 
