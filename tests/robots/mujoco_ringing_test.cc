@@ -101,10 +101,10 @@ TEST(MujocoRinging, LoneBranchRingsAtItsMaterial) {
 
 // Disabled: the bar (5% / 15% on every first-level branch) is not met yet. Measured
 // (2026-11-29, 4 segments, per-chain calibration with gravity, 1 ms step): branches without heavy
-// sub-trees ring within 1% and 7% (6, 7, 8, 10, 12, 14, 16, 17), the others 8-70% off (branch 1
-// at 2.04 Hz for 1.6 Hz, damping 0.046 for 0.02; branch 15's tip rings in a 0.48 Hz sub-tree
-// mode). The free tree's two-way coupling (children tuned below their parents swing them back)
-// moves the ringing; detail/coupled_tuning.h does not converge on tree01 yet
+// sub-trees ring within 5% and 15% (10 of 19: 6, 7, 8, 10, 12, 14, 16-19), the others 8-70% off
+// (branch 1 at 2.04 Hz for 1.6 Hz, damping 0.046 for 0.02; branch 15's tip rings in a 0.48 Hz
+// sub-tree mode). The free tree's two-way coupling (children tuned below their parents swing
+// them back) moves the ringing; detail/coupled_tuning.h does not converge on tree01 yet
 // (coupled_tuning_test.cc). Run it with --gtest_also_run_disabled_tests to see the numbers.
 TEST(MujocoRinging, DISABLED_AuthorsTree01FirstLevelBranchesRingAtTheirMaterials) {
   const Tree tree = AuthorsTree01();
