@@ -52,6 +52,9 @@ void RegisterExport(CLI::App& app) {
   verb->add_option("--twist", args->twist,
                    "Twist hinges: none, auto (branches that carry others) or all")
       ->capture_default_str();
+  verb->add_flag("--collidable", args->options.model.collidable,
+                 "MJCF: a robot's geoms with conaffinity bit 2 can touch the tree's capsules "
+                 "(contype 2); without it the capsules are left out of collision detection");
   verb->add_option("--density", args->options.model.wood_density_kg_m3,
                    "Wood density (kg/m^3) for the segment masses")
       ->capture_default_str()

@@ -142,7 +142,9 @@ TEST_F(RobotFormats, MjcfHoldsTheScannedPoseUnderGravity) {
 // end, the box meets branch 1 and bends the tree, and the simulation stays stable.
 TEST_F(RobotFormats, ExampleSceneGripperPushesTheTree) {
   const auto dir = test::TempDir();
-  test::WriteText(dir / "tree.xml", WriteMjcf(model_));
+  RobotModel touchable = model_;
+  touchable.collidable = true;  // export --collidable
+  test::WriteText(dir / "tree.xml", WriteMjcf(touchable));
   std::filesystem::copy_file(std::filesystem::path(SIMTREE_SOURCE_DIR) / "docs/robots/scene.xml",
                              dir / "scene.xml");
   char error[1000] = "";
@@ -178,6 +180,26 @@ TEST_F(RobotFormats, ExampleSceneGripperPushesTheTree) {
   EXPECT_GT(largest, 0.05) << "the push did not bend the tree";
   mj_deleteData(d);
   mj_deleteModel(m);
+}
+
+// The tree's capsules are left out of collision detection unless asked (--collidable): then a
+// robot geom with conaffinity bit 2 meets them.
+TEST_F(RobotFormats, MjcfCapsulesCollideOnlyWhenAsked) {
+  for (bool collidable : {false, true}) {
+    RobotModel model = model_;
+    model.collidable = collidable;
+    const auto xml = test::TempDir() / "collide.xml";
+    test::WriteText(xml, WriteMjcf(model));
+    char error[1000] = "";
+    mjModel* m = mj_loadXML(xml.c_str(), nullptr, error, sizeof(error));
+    ASSERT_NE(m, nullptr) << error;
+    ASSERT_EQ(m->ngeom, static_cast<int>(model.segments.size()));
+    for (int g = 0; g < m->ngeom; ++g) {
+      EXPECT_EQ(m->geom_contype[g], collidable ? 2 : 0) << g;
+      EXPECT_EQ(m->geom_conaffinity[g], 0) << g;
+    }
+    mj_deleteModel(m);
+  }
 }
 
 }  // namespace

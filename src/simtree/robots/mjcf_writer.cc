@@ -78,11 +78,19 @@ std::string WriteMjcf(const RobotModel& model) {
   out << "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n";
   out << fmt::format("  <option timestep=\"{}\" gravity=\"0 0 {}\"/>\n", Num(model.time_step_s),
                      Num(-model.gravity));
-  out << "  <default>\n"
-         "    <!-- Tree capsules touch nothing of their own (contype 2, conaffinity 0): give a "
-         "robot's geoms conaffinity bit 2 to touch them. -->\n"
-         "    <geom type=\"capsule\" contype=\"2\" conaffinity=\"0\" rgba=\"0.45 0.32 0.2 1\"/>\n"
-         "    <joint type=\"hinge\"/>\n"
+  out << "  <default>\n";
+  if (model.collidable) {
+    out << "    <!-- Tree capsules touch nothing of their own (contype 2, conaffinity 0): give a "
+           "robot's geoms conaffinity bit 2 to touch them. -->\n"
+           "    <geom type=\"capsule\" contype=\"2\" conaffinity=\"0\" "
+           "rgba=\"0.45 0.32 0.2 1\"/>\n";
+  } else {
+    out << "    <!-- Tree capsules touch nothing (contype 0, conaffinity 0: left out of collision "
+           "detection); export with --collidable for a robot to touch them. -->\n"
+           "    <geom type=\"capsule\" contype=\"0\" conaffinity=\"0\" "
+           "rgba=\"0.45 0.32 0.2 1\"/>\n";
+  }
+  out << "    <joint type=\"hinge\"/>\n"
          "    <default class=\"marker\"><site size=\"0.015\" rgba=\"1 0 0 1\"/></default>\n"
          "    <default class=\"grasp\"><site size=\"0.01\" rgba=\"0 0.8 0 1\"/></default>\n"
          "    <default class=\"tip\"><site size=\"0.005\" rgba=\"0 0 1 0.5\"/></default>\n"

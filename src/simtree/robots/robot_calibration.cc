@@ -9,6 +9,7 @@
 #include "simtree/core/error.h"
 #include "simtree/core/option_checks.h"
 #include "simtree/robots/detail/coupled_tuning.h"
+#include "simtree/robots/detail/joint_space_model.h"
 #include "simtree/robots/detail/spatial_inertia.h"
 
 namespace simtree::robots {
@@ -52,36 +53,72 @@ std::vector<HingeRef> HingesOfKind(const RobotModel& model, int branch, HingeKin
 }
 
 struct ChainScale {
-  double scale = 0.0;      // s: K = s diag(kappa)
+  double scale = 0.0;      // s: K = s diag(kappa) (+ gravity's stiffness)
+  double beta = 0.0;       // stiffness-proportional damping giving the lowest mode its ratio
   double omega_max = 0.0;  // the chain's highest eigenfrequency at that scale (rad/s)
 };
 
-ChainScale SolveChain(const RobotModel& model, const std::vector<Matrix6d>& sub,
-                      const std::vector<HingeRef>& hinges, const Eigen::VectorXd& kappa,
-                      double omega) {
+struct ChainMatrices {
+  Eigen::MatrixXd mass, gravity;
+};
+
+// The chain's linearisation over its hinges of one kind, its sub-trees carried rigidly and its
+// parent held still.
+ChainMatrices LineariseChain(const RobotModel& model, const std::vector<Matrix6d>& sub,
+                             const std::vector<HingeRef>& hinges, double gravity) {
   const int n = static_cast<int>(hinges.size());
   std::vector<Vector6d> motion(n);
   for (int j = 0; j < n; ++j) {
     const Segment& s = model.segments[hinges[j].segment];
     motion[j] = detail::HingeMotion(s.hinges[hinges[j].hinge].axis, s.base);
   }
-  Eigen::MatrixXd mass(n, n);
+  ChainMatrices out{Eigen::MatrixXd(n, n), Eigen::MatrixXd(n, n)};
   for (int j = 0; j < n; ++j) {
     for (int k = j; k < n; ++k) {
-      // Both hinges swing the bodies beyond the more distal one.
-      mass(j, k) = mass(k, j) = motion[j].dot(sub[hinges[k].segment] * motion[k]);
+      // Both hinges swing the bodies beyond the more distal one (k, base to tip).
+      const Segment& distal = model.segments[hinges[k].segment];
+      const Matrix6d& carried = sub[hinges[k].segment];
+      out.mass(j, k) = out.mass(k, j) = motion[j].dot(carried * motion[k]);
+      out.gravity(j, k) = out.gravity(k, j) = detail::GravityStiffness(
+          model.segments[hinges[j].segment].hinges[hinges[j].hinge].axis,
+          distal.hinges[hinges[k].hinge].axis, distal.base, carried, gravity);
     }
   }
-  const Eigen::MatrixXd stiffness = kappa.asDiagonal();
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(stiffness, mass,
-                                                                   Eigen::EigenvaluesOnly);
+  return out;
+}
+
+// s such that the lowest eigenvalue of (s diag(kappa) + G, M) is omega^2: Newton's method on
+// s (the lowest eigenvalue is concave and increasing in s, so it converges from any start).
+ChainScale SolveChain(const ChainMatrices& chain, const Eigen::VectorXd& kappa, double omega,
+                      double zeta, int branch) {
+  const int n = static_cast<int>(kappa.size());
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(
+      Eigen::MatrixXd(kappa.asDiagonal()), chain.mass, Eigen::EigenvaluesOnly);
   if (solver.info() != Eigen::Success || !(solver.eigenvalues()(0) > 0)) {
-    throw Error(fmt::format("robot export: branch {}: the chain's mass matrix is singular",
-                            model.segments[hinges[0].segment].branch));
+    throw Error(
+        fmt::format("robot export: branch {}: the chain's mass matrix is singular", branch));
+  }
+  // From the scale without gravity; never below a twentieth of it (where gravity alone, a
+  // hanging pendulum, rings above the target, the chain keeps that much spring).
+  const double s_free = omega * omega / solver.eigenvalues()(0);
+  double s = s_free;
+  for (int iteration = 0; iteration < 50; ++iteration) {
+    const Eigen::MatrixXd stiffness = s * Eigen::MatrixXd(kappa.asDiagonal()) + chain.gravity;
+    solver.compute(stiffness, chain.mass);
+    if (solver.info() != Eigen::Success) {
+      throw Error(
+          fmt::format("robot export: branch {}: the chain's mass matrix is singular", branch));
+    }
+    const Eigen::VectorXd phi = solver.eigenvectors().col(0);  // M-normalised
+    const double error = omega * omega - solver.eigenvalues()(0);
+    if (iteration > 0 && std::abs(error) < 1e-10 * omega * omega) break;
+    s = std::max(0.05 * s_free, s + error / phi.cwiseAbs2().dot(kappa));
   }
   ChainScale out;
-  out.scale = omega * omega / solver.eigenvalues()(0);
-  out.omega_max = std::sqrt(out.scale * solver.eigenvalues()(n - 1));
+  out.scale = s;
+  // The mode's damping ratio is phi^T C phi / (2 omega) with C = beta s diag(kappa).
+  out.beta = 2.0 * zeta * omega / (s * solver.eigenvectors().col(0).cwiseAbs2().dot(kappa));
+  out.omega_max = std::sqrt(std::max(solver.eigenvalues()(n - 1), 0.0));
   return out;
 }
 
@@ -110,8 +147,9 @@ double CalibrateChain(const Branch& branch, HingeKind kind, const std::vector<Ma
     const double r = model->segments[hinges[j].segment].radius;
     kappa(j) = std::pow(r / base_radius, options.stiffness_exponent);
   }
-  const ChainScale chain = SolveChain(*model, sub, hinges, kappa, omega);
-  const double beta = 2.0 * mode.damping_ratio / omega;  // stiffness-proportional damping
+  const ChainScale chain = SolveChain(LineariseChain(*model, sub, hinges, options.gravity), kappa,
+                                      omega, mode.damping_ratio, branch.id);
+  const double beta = chain.beta;  // stiffness-proportional damping
   const Eigen::Vector3d gravity(0, 0, -options.gravity);
   for (size_t j = 0; j < hinges.size(); ++j) {
     Segment& segment = model->segments[hinges[j].segment];
@@ -153,13 +191,16 @@ CalibrationReport CalibrateRobotModel(const Tree& tree, const CalibrationOptions
   }
   CalibrationReport report;
   if (options.coupled_iterations > 0 && model->HingeCount() <= options.coupled_max_hinges) {
-    const detail::CoupledTuningReport coupled =
-        detail::TuneCoupled(tree, options.coupled_iterations, options.coupled_tolerance, model);
+    const detail::CoupledTuningReport coupled = detail::TuneCoupled(
+        tree, options.coupled_iterations, options.coupled_tolerance, options.gravity, model);
     report.coupled = true;
     report.coupled_iterations = coupled.iterations;
+    report.coupled_converged = coupled.converged;
     report.worst_frequency_error = coupled.worst_frequency_error;
     report.worst_damping_error = coupled.worst_damping_error;
     report.groups_off = coupled.groups_off;
+    report.lowest_eigenvalue = coupled.lowest_eigenvalue;
+    report.unstable_modes = coupled.unstable_modes;
     omega_max = std::max(omega_max, coupled.omega_max);
   }
   model->gravity = options.gravity;

@@ -218,6 +218,7 @@ RobotModel BuildRobotModel(const Tree& tree, const RobotModelOptions& options,
   CheckTree(tree, source);
   RobotModel model;
   model.segments_per_branch = SegmentsPerBranch(tree, options);
+  model.collidable = options.collidable;
   model.branch_segments.resize(tree.size());
   const std::vector<std::vector<int>> children = tree.Children();
   // Parents have smaller ids than their children, so id order puts parents first.

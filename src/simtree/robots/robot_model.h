@@ -33,6 +33,10 @@ struct RobotModelOptions {
   int max_bodies = 20000;
   double wood_density_kg_m3 = 900.0;  // segment masses: density times frustum volume
   TwistHinges twist = TwistHinges::kBranchesWithKids;
+  // Whether a robot's geoms can touch the tree's capsules (MJCF contype 2: geoms with conaffinity
+  // bit 2 meet them). Off, the capsules are left out of collision detection altogether, which
+  // was 36-41% of a step at 1,000 branches (docs/benchmarks.md).
+  bool collidable = false;
 
   void Validate() const;  // throws OptionError naming the field
 };
@@ -85,7 +89,8 @@ struct RobotModel {
   int segments_per_branch = 0;                    // after the budget
   double time_step_s = 0.0;  // a simulator step stable for the stiffest hinge (s)
   double total_mass_kg = 0.0;
-  double gravity = 9.81;  // m/s^2 the spring references balance (0: none)
+  double gravity = 9.81;    // m/s^2 the spring references balance (0: none)
+  bool collidable = false;  // RobotModelOptions::collidable
 
   int HingeCount() const;
   const Site* FindSite(const std::string& name) const;

@@ -2,164 +2,164 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 
-#include "simtree/robots/detail/spatial_inertia.h"
+#include "simtree/robots/detail/joint_space_model.h"
 
 namespace simtree::robots::detail {
 namespace {
 
 constexpr double kTwoPi = 6.28318530717958647692;
+constexpr double kMaxLogStep = 0.5;  // a stiffness scale changes by at most e^0.5 a step
 
-struct HingeIndex {
-  int segment;
-  int hinge;
-};
-
-// One branch's hinges of one bending plane and the tip direction a pull in that plane moves.
+// One branch's hinges of one bending plane, with its targets.
 struct Group {
-  int branch = -1;
-  HingeKind kind = HingeKind::kBendU;
-  std::vector<int> hinges;  // indices into the flat hinge list
-  Eigen::Vector3d direction;
-  double omega = 0.0, zeta = 0.0;  // targets
-  Eigen::VectorXd tip_row;         // tip displacement along `direction` per unit hinge rate
-  double frequency_scale = 1.0, damping_scale = 1.0;  // the next update
+  std::vector<int> hinges;  // indices into JointSpaceModel::hinges
+  double omega = 0.0, zeta = 0.0;
 };
 
-bool IsAncestorOrSelf(const RobotModel& model, int ancestor, int segment) {
-  for (int s = segment; s >= 0; s = model.segments[s].parent) {
-    if (s == ancestor) return true;
-  }
-  return false;
-}
-
-// The flat hinge list (MuJoCo's dof order does not matter here).
-std::vector<HingeIndex> FlatHinges(const RobotModel& model) {
-  std::vector<HingeIndex> hinges;
-  for (size_t s = 0; s < model.segments.size(); ++s) {
-    for (size_t h = 0; h < model.segments[s].hinges.size(); ++h) {
-      hinges.push_back({static_cast<int>(s), static_cast<int>(h)});
-    }
-  }
-  return hinges;
-}
-
-// The joint-space mass matrix about the rest pose: each segment's spatial inertia with its
-// sub-tree's, seen through every pair of hinges on one path from the root.
-Eigen::MatrixXd JointSpaceMass(const RobotModel& model, const std::vector<HingeIndex>& hinges) {
-  const int n = static_cast<int>(hinges.size());
-  std::vector<Matrix6d> sub(model.segments.size());
-  for (size_t i = 0; i < model.segments.size(); ++i) {
-    const Segment& s = model.segments[i];
-    sub[i] = SpatialInertia(s.mass_kg, s.center_of_mass, s.inertia);
-  }
-  for (size_t i = model.segments.size(); i-- > 0;) {
-    if (model.segments[i].parent >= 0) sub[model.segments[i].parent] += sub[i];
-  }
-  std::vector<Vector6d> motion(n);
-  for (int i = 0; i < n; ++i) {
-    const Segment& s = model.segments[hinges[i].segment];
-    motion[i] = HingeMotion(s.hinges[hinges[i].hinge].axis, s.base);
-  }
-  Eigen::MatrixXd mass = Eigen::MatrixXd::Zero(n, n);
-  for (int i = 0; i < n; ++i) {
-    for (int j = i; j < n; ++j) {
-      const int si = hinges[i].segment, sj = hinges[j].segment;
-      // Hinges on one path from the root share the bodies beyond the deeper one.
-      int deeper = -1;
-      if (IsAncestorOrSelf(model, si, sj)) {
-        deeper = sj;
-      } else if (IsAncestorOrSelf(model, sj, si)) {
-        deeper = si;
-      }
-      if (deeper >= 0) mass(i, j) = mass(j, i) = motion[i].dot(sub[deeper] * motion[j]);
-    }
-  }
-  return mass;
-}
-
-// Every branch's two bending planes with their targets, each with its tip-pull row: the tip's
-// displacement along the plane's direction per unit hinge rate.
 std::vector<Group> BendingGroups(const Tree& tree, const RobotModel& model,
                                  const std::vector<HingeIndex>& hinges) {
-  const int n = static_cast<int>(hinges.size());
   std::vector<Group> groups;
   for (const Branch& branch : tree.branches) {
     for (HingeKind kind : {HingeKind::kBendU, HingeKind::kBendW}) {
       Group g;
-      g.branch = branch.id;
-      g.kind = kind;
-      g.direction = kind == HingeKind::kBendU ? branch.frame.u : branch.frame.w;
       const Mode& mode =
           branch.material->mode(kind == HingeKind::kBendU ? ModeKind::kBendU : ModeKind::kBendW);
       g.omega = kTwoPi * mode.frequency_hz;
       g.zeta = mode.damping_ratio;
-      const int tip_segment = model.branch_segments[branch.id].back();
-      const Eigen::Vector3d tip = model.segments[tip_segment].tip;
-      g.tip_row = Eigen::VectorXd::Zero(n);
-      for (int i = 0; i < n; ++i) {
+      for (size_t i = 0; i < hinges.size(); ++i) {
         const Segment& s = model.segments[hinges[i].segment];
-        const Hinge& h = s.hinges[hinges[i].hinge];
-        if (s.branch == branch.id && h.kind == kind) g.hinges.push_back(i);
-        if (IsAncestorOrSelf(model, hinges[i].segment, tip_segment)) {
-          g.tip_row(i) = g.direction.dot(h.axis.cross(tip - s.base));
+        if (s.branch == branch.id && s.hinges[hinges[i].hinge].kind == kind) {
+          g.hinges.push_back(static_cast<int>(i));
         }
       }
-      groups.push_back(std::move(g));
+      if (!g.hinges.empty()) groups.push_back(std::move(g));
     }
   }
   return groups;
 }
 
-// Each group's frequency and damping scales from the tree's modes at the present stiffness and
-// damping: the mode its tip pull rings in (largest (tip displacement)^2 / eigenvalue) against the
-// group's target. Fills the report's errors; false when the eigenproblem fails.
-bool MeasureGroups(const Eigen::MatrixXd& mass, const Eigen::VectorXd& k, const Eigen::VectorXd& c,
-                   std::vector<Group>& groups, CoupledTuningReport& report) {
-  const int n = static_cast<int>(k.size());
-  const Eigen::MatrixXd stiffness = k.asDiagonal();
-  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(stiffness, mass);
+// The tree's modes at the present springs, and each mode's share of strain energy per group.
+struct Modes {
+  Eigen::VectorXd lambda;  // ascending
+  Eigen::MatrixXd phi;     // M-normalised, one mode a column
+  Eigen::MatrixXd share;   // [mode][group]: sum over the group's hinges of k phi^2 / lambda
+};
+
+bool SolveModes(const JointSpaceModel& lin, const Eigen::VectorXd& k,
+                const std::vector<Group>& groups, Modes* out, CoupledTuningReport* report) {
+  const Eigen::MatrixXd stiffness = Eigen::MatrixXd(k.asDiagonal()) + lin.gravity;
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(stiffness, lin.mass);
   if (solver.info() != Eigen::Success) return false;
-  const Eigen::VectorXd& lambda = solver.eigenvalues();
-  const Eigen::MatrixXd& phi = solver.eigenvectors();  // M-normalised
-  report.omega_max = std::sqrt(lambda(n - 1));
-  report.worst_frequency_error = report.worst_damping_error = 0.0;
-  report.groups_off = 0;
-  for (Group& g : groups) {
-    const Eigen::VectorXd tip = phi.transpose() * g.tip_row;
-    int best = 0;
-    double best_weight = -1.0;
-    for (int m = 0; m < n; ++m) {
-      const double weight = tip(m) * tip(m) / lambda(m);
-      if (weight > best_weight) best_weight = weight, best = m;
-    }
-    const double omega = std::sqrt(lambda(best));
-    const double zeta = phi.col(best).cwiseAbs2().dot(c) / (2.0 * omega);
-    report.worst_frequency_error =
-        std::max(report.worst_frequency_error, std::abs(omega / g.omega - 1.0));
-    report.worst_damping_error =
-        std::max(report.worst_damping_error, std::abs(zeta / g.zeta - 1.0));
-    // Half steps, bounded: a branch's mode moves with its neighbours' updates too.
-    g.frequency_scale = std::clamp(g.omega / omega, 0.7, 1.4);
-    g.damping_scale = std::clamp(std::sqrt(g.zeta / zeta), 0.7, 1.4);
-    if (std::abs(omega / g.omega - 1.0) > 0.05) ++report.groups_off;
+  report->lowest_eigenvalue = solver.eigenvalues()(0);
+  report->unstable_modes = static_cast<int>((solver.eigenvalues().array() < 0).count());
+  if (!(solver.eigenvalues()(0) > 0)) return false;
+  out->lambda = solver.eigenvalues();
+  out->phi = solver.eigenvectors();
+  const Eigen::MatrixXd strain = (out->phi.cwiseAbs2().transpose() * k.asDiagonal());
+  out->share.resize(out->lambda.size(), groups.size());
+  for (size_t g = 0; g < groups.size(); ++g) {
+    Eigen::VectorXd sum = Eigen::VectorXd::Zero(out->lambda.size());
+    for (int i : groups[g].hinges) sum += strain.col(i);
+    out->share.col(g) = sum.cwiseQuotient(out->lambda);
   }
   return true;
 }
 
-// Scales each group's hinges, keeping gravity's torque at the rest pose.
-void ApplyScales(const std::vector<Group>& groups, const std::vector<HingeIndex>& hinges,
-                 RobotModel* model) {
-  for (const Group& g : groups) {
-    for (int i : g.hinges) {
+// One mode per group, one group per mode: the strongest claims (share / lambda) first.
+std::vector<int> AssignModes(const Modes& modes) {
+  std::vector<std::tuple<double, int, int>> claims;  // (weight, mode, group)
+  for (int m = 0; m < modes.share.rows(); ++m) {
+    for (int g = 0; g < modes.share.cols(); ++g) {
+      if (modes.share(m, g) > 0.05) claims.emplace_back(modes.share(m, g) / modes.lambda(m), m, g);
+    }
+  }
+  std::sort(claims.begin(), claims.end(), std::greater<>());
+  std::vector<int> mode_of(modes.share.cols(), -1);
+  std::vector<bool> taken(modes.share.rows(), false);
+  for (const auto& [weight, m, g] : claims) {
+    if (mode_of[g] >= 0 || taken[m]) continue;
+    mode_of[g] = m;
+    taken[m] = true;
+  }
+  return mode_of;
+}
+
+// Rows of the energy shares for the assigned modes: J(g, h) = d log lambda_{mode(g)} / d log s_h.
+Eigen::MatrixXd AssignedShares(const Modes& modes, const std::vector<int>& mode_of) {
+  Eigen::MatrixXd j(mode_of.size(), modes.share.cols());
+  for (size_t g = 0; g < mode_of.size(); ++g) j.row(g) = modes.share.row(mode_of[g]);
+  return j;
+}
+
+// The damping ratio of every assigned mode (modal, the cross terms of non-proportional damping
+// left out: they are second order at these ratios); fills the report's errors.
+void Measure(const Modes& modes, const std::vector<int>& mode_of, const std::vector<Group>& groups,
+             const Eigen::VectorXd& c, CoupledTuningReport* report) {
+  report->worst_frequency_error = report->worst_damping_error = 0.0;
+  report->groups_off = 0;
+  for (size_t g = 0; g < groups.size(); ++g) {
+    const int m = mode_of[g];
+    const double omega = std::sqrt(modes.lambda(m));
+    const double zeta = modes.phi.col(m).cwiseAbs2().dot(c) / (2.0 * omega);
+    const double df = std::abs(omega / groups[g].omega - 1.0);
+    report->worst_frequency_error = std::max(report->worst_frequency_error, df);
+    report->worst_damping_error =
+        std::max(report->worst_damping_error, std::abs(zeta / groups[g].zeta - 1.0));
+    if (df > 0.05) ++report->groups_off;
+  }
+  report->omega_max = std::sqrt(modes.lambda(modes.lambda.size() - 1));
+}
+
+// Newton's step on the log-stiffness scales, bounded.
+Eigen::VectorXd StiffnessStep(const Modes& modes, const std::vector<int>& mode_of,
+                              const std::vector<Group>& groups, const Eigen::MatrixXd& jacobian) {
+  Eigen::VectorXd residual(groups.size());
+  for (size_t g = 0; g < groups.size(); ++g) {
+    const double target = groups[g].omega * groups[g].omega;
+    residual(g) = std::log(target / std::max(modes.lambda(mode_of[g]), 1e-6 * target));
+  }
+  Eigen::VectorXd step = jacobian.partialPivLu().solve(residual);
+  if (!step.allFinite()) step = residual;
+  return step.cwiseMax(-kMaxLogStep).cwiseMin(kMaxLogStep);
+}
+
+// Stiffness-proportional factors beta_h giving each assigned mode its group's damping ratio;
+// damping of hinges in no group (twist) is kept and counted.
+Eigen::VectorXd DampingFactors(const Modes& modes, const std::vector<int>& mode_of,
+                               const std::vector<Group>& groups, const Eigen::MatrixXd& jacobian,
+                               const Eigen::VectorXd& c_other) {
+  Eigen::VectorXd rhs(groups.size());
+  for (size_t g = 0; g < groups.size(); ++g) {
+    const int m = mode_of[g];
+    const double omega = std::sqrt(modes.lambda(m));
+    const double other = modes.phi.col(m).cwiseAbs2().dot(c_other);
+    rhs(g) = (2.0 * omega * groups[g].zeta - other) / modes.lambda(m);
+  }
+  Eigen::VectorXd beta = jacobian.partialPivLu().solve(rhs);
+  for (size_t g = 0; g < groups.size(); ++g) {
+    // Never negative or vanishing: at least a tenth of the group's own chain value.
+    const double floor = 0.2 * groups[g].zeta / groups[g].omega;
+    if (!std::isfinite(beta(g)) || beta(g) < floor) beta(g) = floor;
+  }
+  return beta;
+}
+
+// Writes the scaled stiffness and the new damping, keeping each spring's torque at rest (it
+// balances gravity).
+void ApplyToModel(const std::vector<Group>& groups, const std::vector<HingeIndex>& hinges,
+                  const Eigen::VectorXd& log_step, const Eigen::VectorXd& beta, RobotModel* model) {
+  for (size_t g = 0; g < groups.size(); ++g) {
+    for (int i : groups[g].hinges) {
       Hinge& h = model->segments[hinges[i].segment].hinges[hinges[i].hinge];
       const double torque = h.spring_reference * h.stiffness;
-      h.stiffness *= g.frequency_scale;
-      // The mode's damping ratio goes as c / omega, and omega as sqrt(k).
-      h.damping *= std::sqrt(g.frequency_scale) * g.damping_scale;
+      h.stiffness *= std::exp(log_step(g));
+      h.damping = beta(g) * h.stiffness;
       h.spring_reference = torque / h.stiffness;
     }
   }
@@ -168,26 +168,35 @@ void ApplyScales(const std::vector<Group>& groups, const std::vector<HingeIndex>
 }  // namespace
 
 CoupledTuningReport TuneCoupled(const Tree& tree, int max_iterations, double tolerance,
-                                RobotModel* model) {
-  const std::vector<HingeIndex> hinges = FlatHinges(*model);
-  const int n = static_cast<int>(hinges.size());
-  const Eigen::MatrixXd mass = JointSpaceMass(*model, hinges);
-  std::vector<Group> groups = BendingGroups(tree, *model, hinges);
+                                double gravity, RobotModel* model) {
+  const JointSpaceModel lin = LineariseRobotModel(*model, gravity);
+  const int n = static_cast<int>(lin.hinges.size());
+  const std::vector<Group> groups = BendingGroups(tree, *model, lin.hinges);
+  std::vector<bool> grouped(n, false);
+  for (const Group& g : groups) {
+    for (int i : g.hinges) grouped[i] = true;
+  }
   CoupledTuningReport report;
   for (int iteration = 0; iteration <= max_iterations; ++iteration) {
-    Eigen::VectorXd k(n), c(n);
+    Eigen::VectorXd k(n), c(n), c_other = Eigen::VectorXd::Zero(n);
     for (int i = 0; i < n; ++i) {
-      const Hinge& h = model->segments[hinges[i].segment].hinges[hinges[i].hinge];
+      const Hinge& h = model->segments[lin.hinges[i].segment].hinges[lin.hinges[i].hinge];
       k(i) = h.stiffness;
       c(i) = h.damping;
+      if (!grouped[i]) c_other(i) = h.damping;
     }
-    if (!MeasureGroups(mass, k, c, groups, report)) break;
+    Modes modes;
+    if (!SolveModes(lin, k, groups, &modes, &report)) break;
+    const std::vector<int> mode_of = AssignModes(modes);
+    if (std::count(mode_of.begin(), mode_of.end(), -1) > 0) break;
+    Measure(modes, mode_of, groups, c, &report);
     report.iterations = iteration;
-    if (iteration == max_iterations ||
-        (report.worst_frequency_error < tolerance && report.worst_damping_error < tolerance)) {
-      break;
-    }
-    ApplyScales(groups, hinges, model);
+    report.converged =
+        report.worst_frequency_error < tolerance && report.worst_damping_error < tolerance;
+    if (report.converged || iteration == max_iterations) break;
+    const Eigen::MatrixXd jacobian = AssignedShares(modes, mode_of);
+    const Eigen::VectorXd beta = DampingFactors(modes, mode_of, groups, jacobian, c_other);
+    ApplyToModel(groups, lin.hinges, StiffnessStep(modes, mode_of, groups, jacobian), beta, model);
   }
   return report;
 }
