@@ -15,9 +15,9 @@
 // Which one the branch gets is `by_participation` (default: the dominant mode). Measured on the
 // FEM synth (3 presets x seeds 1-3, 2.5 mm tracker error, docs/identification.md "Each branch
 // its own mode"): by participation the measured branches' median error against their own FEM
-// truth rose from 1.63% to 13.8% (min_share 0.3) or 3.2% (0.7); the shares of the sway modes a
-// link and its parent carry differ by less than their noise, and a link from the trunk marker is
-// measured against the fixed camera, so the trunk's tilt is in both.
+// truth rose from 1.63% to 13.8% (min_share 0.3). A link and its parent carry the tree's first
+// few modes in similar shares, and a link from the trunk marker is measured against the fixed
+// camera, so the trunk's tilt is in its signal and its parent's alike.
 
 #include <array>
 #include <limits>
