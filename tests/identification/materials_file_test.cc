@@ -47,6 +47,24 @@ TEST(MaterialsFile, FromAnIdentificationWithBranchModesAndAMissingLink) {
   EXPECT_EQ(m.ranges.measured, 2);  // the root marker does not move: flat
 }
 
+// A link's branch mode, when it has one, is what its branch gets (all three modes here).
+TEST(MaterialsFile, ABranchTakesItsLinksBranchMode) {
+  MaterialsFile m = MaterialsFromIdentification(Identified(), "t.csv");
+  for (LinkMaterial& l : m.links) {
+    if (l.child != 1 && l.child != 2) continue;
+    l.branch_mode = l.value;
+    l.branch_mode.frequency_hz = 2.5;
+    l.branch_mode.damping_ratio = 0.05;
+    l.branch_planes = {l.branch_mode, l.branch_mode};
+  }
+  AssignBranchMaterials(m);
+  ASSERT_EQ(m.branches.size(), 1u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_DOUBLE_EQ(m.branches[0].modes[k].frequency_hz, 2.5);
+    EXPECT_DOUBLE_EQ(m.branches[0].modes[k].damping_ratio, 0.05);
+  }
+}
+
 TEST(MaterialsFile, JsonRoundTripWritesNullForWhatWasNotEstimatedOrUnresolved) {
   const MaterialsFile m = MaterialsFromIdentification(Identified(), "t.csv");
   const nlohmann::ordered_json j = MaterialsToJson(m);
@@ -57,6 +75,13 @@ TEST(MaterialsFile, JsonRoundTripWritesNullForWhatWasNotEstimatedOrUnresolved) {
   EXPECT_THAT(j["links"][1]["poles"]["used"].get<std::string>(), ::testing::AnyOf("shared", "own"));
   EXPECT_THAT(j["links"][1]["poles"]["why"].get<std::string>(), HasSubstr("BIC"));
   EXPECT_TRUE(j["links"][3]["poles"].is_null());
+  // The joint poles as the link carries them, and the mode its branch gets (by default the
+  // dominant one) with the most participating pole beside it; read back below.
+  ASSERT_FALSE(j["links"][1]["modes"].empty());
+  EXPECT_TRUE(j["links"][1]["modes"][0].contains("participation"));
+  EXPECT_DOUBLE_EQ(j["links"][1]["branch_mode"]["frequency_hz"].get<double>(),
+                   m.links[1].value.frequency_hz);
+  EXPECT_FALSE(j["links"][3].contains("branch_mode"));
   const auto dir = test::TempDir();
   WriteMaterialsJson(m, dir / "m.json");
   const MaterialsFile back = ReadMaterialsJson(dir / "m.json");
@@ -114,6 +139,8 @@ TEST(MaterialsFile, BadFilesNameTheField) {
       {"negative damping", [](auto& j) { j["links"][1]["damping_ratio"] = -0.1; },
        "links[1].damping_ratio: expected in (0, 1)"},
       {"status", [](auto& j) { j["links"][0]["status"] = "great"; }, "unknown status"},
+      {"pole frequency", [](auto& j) { j["links"][1]["modes"][0]["frequency_hz"] = -1.0; },
+       "links[1].modes[0].frequency_hz: expected > 0"},
       {"estimator", [](auto& j) { j["estimator"] = "x"; }, "estimator: unknown estimator"},
       {"modes", [](auto& j) { j["branches"][0]["modes"].erase(0); }, "expected 3 modes"},
       {"mode order",

@@ -86,6 +86,7 @@ TEST(Options, IdentifyNamesTheNestedField) {
       Bad<IdentifyOptions>("outliers.threshold", [](auto& o) { o.outliers.threshold = -6; }),
       Bad<IdentifyOptions>("joint.components", [](auto& o) { o.joint.components = 0; }),
       Bad<IdentifyOptions>("joint.min_split", [](auto& o) { o.joint.min_split = -0.1; }),
+      Bad<IdentifyOptions>("branch_modes.min_share", [](auto& o) { o.branch_modes.min_share = 2; }),
   });
 }
 

@@ -90,6 +90,7 @@ void IdentifyOptions::Validate() const {
   CheckNested("deflection", deflection);
   CheckNested("outliers", outliers);
   CheckNested("joint", joint);
+  CheckNested("branch_modes", branch_modes);
 }
 
 void RangeOptions::Validate() const {
@@ -255,6 +256,13 @@ void ApplyJointPoles(const IdentifyOptions& options, IdentificationResult& out) 
   int shared = 0;
   for (size_t i = 0; i < signals.size(); ++i) {
     SignalEstimate& e = joint.links[i];
+    if (e.fit) {
+      const SearchBand band = BandOf(options.estimation, e.duration_s, signals[i].dt);
+      links[i]->modes =
+          ModeShares(*e.fit, e.duration_s,
+                     std::max(band.min_hz, options.estimation.min_periods / e.duration_s),
+                     band.max_hz, options.estimation.max_damping_ratio);
+    }
     // The stack's standard deviations widened by this link's own record of the shared mode.
     WidenBySharedMisfit(*estimates[i], e);
     LinkPolesUse& use = links[i]->poles;
@@ -275,6 +283,40 @@ void ApplyJointPoles(const IdentifyOptions& options, IdentificationResult& out) 
   out.joint_poles_note +=
       fmt::format("; {} of {} links read the shared poles{}", shared, signals.size(),
                   choices.empty() ? " (forced)" : ", the others their own fit (BIC per link)");
+}
+
+// Every link carrying joint poles gets its branch mode (detail/branch_modes.h); its parent
+// link is the one whose child is its parent marker.
+void AssignBranchModes(const IdentifyOptions& options, IdentificationResult& out) {
+  // The joint poles are the damped sinusoid fit's: another estimator's values stay as read.
+  if (options.estimator != EstimatorKind::kDampedSinusoidFit) return;
+  std::vector<std::vector<LinkModeShare>> shares;
+  std::vector<LinkIdentification*> links;
+  for (LinkIdentification& link : out.links) {
+    if (link.modes.empty()) continue;
+    shares.push_back(link.modes);
+    links.push_back(&link);
+  }
+  std::vector<int> parent(links.size(), -1);
+  for (size_t i = 0; i < links.size(); ++i) {
+    for (size_t j = 0; j < links.size(); ++j) {
+      if (links[j]->deflection.link.child == links[i]->deflection.link.parent) parent[i] = j;
+    }
+  }
+  const std::vector<BranchMode> modes = ChooseBranchModes(shares, parent, options.branch_modes);
+  for (size_t i = 0; i < links.size(); ++i) {
+    LinkIdentification& link = *links[i];
+    link.modes = std::move(shares[i]);
+    link.branch_mode = modes[i];
+    // The dominant mode itself: the link's value as read (own fit or shared, widened deviations).
+    const SignalEstimate* fit = link.Find(EstimatorKind::kDampedSinusoidFit);
+    if (modes[i].strongest && fit && fit->dominant.status == EstimateStatus::kOk) {
+      link.branch_mode.value = fit->dominant;
+      for (int c = 0; c < 2 && c < static_cast<int>(fit->per_channel.size()); ++c) {
+        link.branch_mode.planes[c] = fit->per_channel[c];
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -308,6 +350,8 @@ IdentificationResult IdentifyMaterials(const Trajectories& input,
   out.links = EstimateLinks(trajectories, markers, decay, out.estimators, options);
   // The tree's modes are shared by every link: read the measured links on poles fitted to all.
   ApplyJointPoles(options, out);
+  // Each branch its own mode: the joint pole it moves in most relative to its parent.
+  AssignBranchModes(options, out);
   return out;
 }
 

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "simtree/identification/detail/branch_modes.h"
 #include "simtree/identification/detail/deflection.h"
 #include "simtree/identification/detail/joint_poles.h"
 #include "simtree/identification/detail/release.h"
@@ -54,6 +55,8 @@ struct IdentifyOptions {
   // that rings at its own frequencies keeps its own fit. False: every link reads the joint poles.
   bool choose_per_link = true;
   JointPolesOptions joint;  // the joint fit (detail/joint_poles.h)
+  // Each measured branch's own mode among the joint poles (detail/branch_modes.h).
+  BranchModeOptions branch_modes;
 
   // Throws InputError naming the field ("estimation.max_modes") for a value out of range.
   void Validate() const;
@@ -83,6 +86,10 @@ struct LinkIdentification {
   ModalEstimate value;                    // the chosen estimator's dominant mode
   std::vector<SignalEstimate> estimates;  // the chosen estimator first, then the others
   LinkPolesUse poles;                     // the damped sinusoid fit's poles
+  // The joint poles as this link carries them (empty without joint poles), and the one its
+  // branch moves in most relative to its parent (detail/branch_modes.h; kFailed when none).
+  std::vector<LinkModeShare> modes;
+  BranchMode branch_mode;
 
   const SignalEstimate* Find(EstimatorKind kind) const;
   bool measured() const { return value.status == EstimateStatus::kOk; }

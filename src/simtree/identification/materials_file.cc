@@ -97,6 +97,34 @@ void ReadRecord(const JsonNode& rec, MaterialsFile& m) {
   }
 }
 
+LinkModeShare ModeShareFromJson(const JsonNode& j) {
+  j.ExpectObject();
+  LinkModeShare m;
+  const JsonNode f = j.Field("frequency_hz"), z = j.Field("damping_ratio");
+  m.frequency_hz = f.Number();
+  m.damping_ratio = z.Number();
+  if (!(m.frequency_hz > 0)) f.Fail("expected > 0");
+  if (!(m.damping_ratio > 0 && m.damping_ratio < 1)) z.Fail("expected in (0, 1)");
+  m.frequency_std_hz = NullableNumber(j, "frequency_std_hz");
+  m.damping_std = NullableNumber(j, "damping_std");
+  m.amplitude = NullableNumber(j, "amplitude");
+  m.strength = NullableNumber(j, "strength");
+  m.share = NullableNumber(j, "share");
+  m.participation = NullableNumber(j, "participation");
+  return m;
+}
+
+ojson ModeShareToJson(const LinkModeShare& m) {
+  return {{"frequency_hz", Number(m.frequency_hz)},
+          {"damping_ratio", Number(m.damping_ratio)},
+          {"frequency_std_hz", Number(m.frequency_std_hz)},
+          {"damping_std", Number(m.damping_std)},
+          {"amplitude", Number(m.amplitude)},
+          {"strength", Number(m.strength)},
+          {"share", Number(m.share)},
+          {"participation", Number(m.participation)}};
+}
+
 // `estimator`: the file's, which gave the link's value, planes and pole readings.
 LinkMaterial LinkFromJson(const JsonNode& j, EstimatorKind estimator) {
   j.ExpectObject();
@@ -141,6 +169,21 @@ LinkMaterial LinkFromJson(const JsonNode& j, EstimatorKind estimator) {
     if (const auto shared = poles->Find("shared"))
       l.shared_reading = EstimateFromJson(*shared, estimator);
     if (const auto own = poles->Find("own")) l.own_reading = EstimateFromJson(*own, estimator);
+  }
+  if (const auto modes = j.Find("modes")) {
+    for (const JsonNode& m : modes->Items()) l.modes.push_back(ModeShareFromJson(m));
+  }
+  if (const auto mode = j.Find("branch_mode"); mode && !mode->is_null()) {
+    l.branch_mode = EstimateFromJson(*mode, estimator);
+    l.branch_participation = NullableNumber(*mode, "participation");
+    l.most_participating_hz = NullableNumber(*mode, "most_participating_hz");
+    if (const auto why = mode->Find("why")) l.branch_mode_why = why->String();
+    if (const auto planes = mode->Find("planes")) {
+      if (planes->size() != 2) planes->Fail("expected 2 planes (u, w)");
+      for (int c = 0; c < 2; ++c) l.branch_planes[c] = EstimateFromJson(planes->Item(c), estimator);
+    } else {
+      l.branch_planes = {l.branch_mode, l.branch_mode};
+    }
   }
   return l;
 }
@@ -218,6 +261,14 @@ MaterialsFile MaterialsFromIdentification(const IdentificationResult& result,
         l.shared_reading = link.poles.joint;
         l.own_reading = link.poles.own;
       }
+      l.modes = link.modes;
+      if (link.branch_mode.value.status == EstimateStatus::kOk) {
+        l.branch_mode = link.branch_mode.value;
+        l.branch_planes = link.branch_mode.planes;
+        l.branch_participation = link.branch_mode.participation;
+        l.most_participating_hz = link.branch_mode.most_participating_hz;
+        l.branch_mode_why = link.branch_mode.why;
+      }
     } else {
       l.planes = {link.value, link.value};
     }
@@ -244,17 +295,23 @@ void AssignBranchMaterials(MaterialsFile& m, const std::vector<int>& marker_bran
     BranchMaterial b;
     b.branch = branch;
     b.link_child = link->child;
-    b.frequency_std_hz = link->value.frequency_std_hz;
-    b.damping_std = link->value.damping_std;
+    // The branch's own mode (its participation) when the link carries joint poles, else the
+    // link's dominant mode.
+    const bool own_mode =
+        link->branch_mode.status == EstimateStatus::kOk && link->branch_mode.has_frequency();
+    const ModalEstimate& value = own_mode ? link->branch_mode : link->value;
+    const std::array<ModalEstimate, 2>& planes = own_mode ? link->branch_planes : link->planes;
+    b.frequency_std_hz = value.frequency_std_hz;
+    b.damping_std = value.damping_std;
     for (int k = 0; k < 3; ++k) {
       b.modes[k].kind = static_cast<ModeKind>(k);
       // A bending mode takes its own plane's reading when the link is an angle (its planes are
       // the branch's u and w) and that reading exists; otherwise the dominant value, assumed.
-      const ModalEstimate* e = &link->value;
+      const ModalEstimate* e = &value;
       b.assumed[k] = true;
       if (k < 2 && link->kind == DeflectionKind::kRelativeAngle &&
-          link->planes[k].status == EstimateStatus::kOk) {
-        e = &link->planes[k];
+          planes[k].status == EstimateStatus::kOk && planes[k].has_frequency()) {
+        e = &planes[k];
         b.assumed[k] = false;
       }
       b.modes[k].frequency_hz = e->frequency_hz;
@@ -309,6 +366,19 @@ nlohmann::ordered_json MaterialsToJson(const MaterialsFile& m) {
                                          {"why", l.poles_why},
                                          {"shared", EstimateToJson(l.shared_reading)},
                                          {"own", EstimateToJson(l.own_reading)}};
+    if (!l.modes.empty()) {
+      ojson modes = ojson::array();
+      for (const LinkModeShare& share : l.modes) modes.push_back(ModeShareToJson(share));
+      j["modes"] = std::move(modes);
+    }
+    if (l.branch_mode.has_frequency()) {
+      ojson mode = EstimateToJson(l.branch_mode);
+      mode["participation"] = Number(l.branch_participation);
+      mode["most_participating_hz"] = Number(l.most_participating_hz);
+      mode["why"] = l.branch_mode_why;
+      mode["planes"] = {EstimateToJson(l.branch_planes[0]), EstimateToJson(l.branch_planes[1])};
+      j["branch_mode"] = std::move(mode);
+    }
     links.push_back(std::move(j));
   }
   doc["links"] = std::move(links);

@@ -36,6 +36,16 @@ struct LinkMaterial {
   // Both readings of the fit's dominant mode (status kFailed when not made): on the shared poles
   // and on the link's own fit, whichever `poles` chose.
   ModalEstimate shared_reading, own_reading;
+  // The joint poles as this link carries them (strength, share, participation) and the mode its
+  // branch gets, which `branches` and `build` use (detail/branch_modes.h: the dominant one by
+  // default), with the most participating pole beside it; no frequency without joint poles (the
+  // branch then takes `value`).
+  std::vector<LinkModeShare> modes;
+  ModalEstimate branch_mode;
+  std::array<ModalEstimate, 2> branch_planes;
+  double branch_participation = std::numeric_limits<double>::quiet_NaN();
+  double most_participating_hz = std::numeric_limits<double>::quiet_NaN();
+  std::string branch_mode_why;
 };
 
 // The three modes a measured branch gets. `assumed[k]` is true for a mode taken from the
