@@ -113,5 +113,16 @@ TEST(RealSenseBag, RefusedBagsSayWhy) {
               HasSubstr("expected a ROS bag version 2.0"));
 }
 
+// The fuzzer's input (fuzz/regressions/realsense_bag/): an lz4 chunk whose size field claims 4 GB
+// uncompressed, which the reader allocated before decompressing.
+TEST(RealSenseBag, AChunkClaimingGigabytesIsRefusedNotAllocated) {
+  const fs::path bag =
+      fs::path(SIMTREE_SOURCE_DIR) / "fuzz/regressions/realsense_bag/chunk_claims_4gb.bag";
+  const std::string message = test::ErrorOf([&] { OpenRealSenseBag(bag, {}); });
+  if (!io_detail::RosCompressionSupported("lz4")) GTEST_SKIP() << "built without lz4";
+  EXPECT_THAT(message, HasSubstr("chunk_claims_4gb.bag: the lz4 chunk at byte"));
+  EXPECT_THAT(message, HasSubstr("the header claims 4294962188"));
+}
+
 }  // namespace
 }  // namespace simtree
