@@ -20,6 +20,10 @@
 #include "simtree/io/point_cloud_io.h"
 #include "simtree/io/track_init.h"
 #include "simtree/io/trajectories.h"
+#include "support/las_writer.h"
+#include "support/open3d_folder_writer.h"
+#include "support/ros_bag_writer.h"
+#include "support/tum_rgbd_writer.h"
 
 namespace fs = std::filesystem;
 
@@ -181,6 +185,41 @@ void RecordingSeeds(const fs::path& out, const fs::path& shared) {
   }
 }
 
+// The other programs' files, by the readers' tests' writers (tests/support/): LAS in three versions
+// (colour, variable length records, extra bytes), a RealSense bag per chunk compression, a TUM
+// sequence's two lists (the fuzz target writes the images they name) and Open3D's intrinsic.json.
+void RecordingFormatSeeds(const fs::path& out) {
+  const std::vector<test::LasPoint> points = {
+      {0, 0, 0, 255, 0, 0}, {1500, -2500, 123, 0, 128, 255}, {-40, 70, 9, 3, 4, 5}};
+  const fs::path las = Target(out, "point_cloud_las");
+  test::WriteLas(las / "v12_f0.las", {}, points);
+  test::LasSpec colour;
+  colour.minor = 3;
+  colour.format = 3;
+  colour.vlr_bytes = 54;
+  test::WriteLas(las / "v13_f3_vlr.las", colour, points);
+  test::LasSpec v14;
+  v14.minor = 4;
+  v14.format = 7;
+  v14.extra_bytes = 3;
+  test::WriteLas(las / "v14_f7_extra.las", v14, points);
+  for (const std::string compression : {"none", "lz4", "bz2"}) {
+    if (!test::BagCompressionWritten(compression)) continue;
+    test::BagSpec spec;
+    spec.compression = compression;
+    test::WriteBag(Target(out, "realsense_bag") / (compression + ".bag"), spec);
+  }
+  const fs::path tum = test::WriteTumSequence(out / "tum_sequence");
+  fs::copy_file(tum / "rgb.txt", Target(out, "tum_list") / "rgb.txt",
+                fs::copy_options::overwrite_existing);
+  fs::copy_file(tum / "depth.txt", out / "tum_list/depth.txt",
+                fs::copy_options::overwrite_existing);
+  fs::remove_all(tum);
+  WriteFileAtomically(Target(out, "open3d_intrinsic") / "intrinsic.json",
+                      test::Open3dIntrinsicJson());
+  WriteIntrinsicsJson({40, 30, 35, 36, 19.5, 14.5, 0.001}, out / "open3d_intrinsic/simtree.json");
+}
+
 }  // namespace
 }  // namespace simtree::fuzz
 
@@ -198,5 +237,6 @@ int main(int argc, char** argv) {
   PointCloudSeeds(out);
   ImageSeeds(out);
   RecordingSeeds(out, shared);
+  RecordingFormatSeeds(out);
   return 0;
 }

@@ -20,12 +20,14 @@ declare -A max_len=(
   [tree_json]=16384 [legacy_tree]=65536 [legacy_parameters]=4096 [materials_json]=32768
   [markers_json]=4096 [trajectories_csv]=16384 [intrinsics_json]=2048 [capture_files]=4096
   [azure_calibration]=16384 [point_cloud_xyz]=8192 [point_cloud_ply]=8192
-  [point_cloud_pcd]=8192 [png_image]=16384 [azure_mkv]=262144
+  [point_cloud_pcd]=8192 [png_image]=16384 [azure_mkv]=262144 [point_cloud_las]=4096
+  [realsense_bag]=16384 [tum_list]=2048 [open3d_intrinsic]=2048
 )
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(tree_json legacy_tree legacy_parameters materials_json
   markers_json trajectories_csv intrinsics_json capture_files azure_calibration point_cloud_xyz
-  point_cloud_ply point_cloud_pcd png_image azure_mkv)
+  point_cloud_ply point_cloud_pcd png_image azure_mkv point_cloud_las realsense_bag tum_list
+  open3d_intrinsic)
 
 corpus=$build/fuzz_corpus
 out=$build/fuzz_out

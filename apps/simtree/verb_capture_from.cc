@@ -20,6 +20,23 @@ namespace simtree::cli {
 
 namespace {
 
+// A recording folder is read whole (its layout from what it holds): a capture written inside one
+// would change the input, and a second run would meet it there.
+void RefuseOutputInsideRecordings(const fs::path& output, const std::vector<fs::path>& inputs) {
+  std::error_code ec;
+  const fs::path out = fs::weakly_canonical(output, ec);
+  for (const fs::path& input : inputs) {
+    if (!fs::is_directory(input)) continue;
+    const fs::path rel = out.lexically_relative(fs::weakly_canonical(input, ec));
+    if (!rel.empty() && rel.native().rfind("..", 0) != 0) {
+      throw InputError(output.string(), "",
+                       fmt::format("refusing to write inside the recording {}; choose another "
+                                   "output",
+                                   input.string()));
+    }
+  }
+}
+
 void LogResult(const CaptureFromResult& r, const std::string& output) {
   for (const ScanViewPick& v : r.views) {
     spdlog::info(
@@ -151,6 +168,7 @@ void RegisterCaptureFrom(CLI::App& app) {
     if (args->depth_scale > 0) args->options.sequence.depth_units_per_m = args->depth_scale;
     args->options.Validate();
     RefuseToOverwriteInputs(args->output, inputs);
+    RefuseOutputInsideRecordings(args->output, inputs);
     AtomicDirectory folder(args->output);
     const CaptureFromResult result = CaptureFromRecordings(args->options, folder.path());
     folder.Commit();

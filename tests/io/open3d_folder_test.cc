@@ -1,4 +1,5 @@
-// Open3D reconstruction-system folders written by the test: the intrinsic JSON, depth scale,
+// Open3D reconstruction-system folders written by the test-support writer
+// (tests/support/open3d_folder_writer.h): the intrinsic JSON, depth scale,
 // pairing in name order, bad folders, and the folder through CaptureFromRecordings.
 
 #include <string>
@@ -10,6 +11,7 @@
 #include "simtree/io/intrinsics_file.h"
 #include "simtree/io/open3d_folder.h"
 #include "simtree/io/recording_layout.h"
+#include "support/open3d_folder_writer.h"
 #include "test_util.h"
 
 namespace simtree {
@@ -17,37 +19,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kWidth = 40;
-constexpr int kHeight = 30;
-
-// Frame i: colour (x * 6, y * 8, i * 50) and depth raw 2000 + 3x + y + 100 i.
-fs::path WriteFolder(const fs::path& dir, int frames, const std::string& intrinsic_name) {
-  fs::create_directories(dir / "color");
-  fs::create_directories(dir / "depth");
-  for (int i = 0; i < frames; ++i) {
-    RgbImage c(kWidth, kHeight);
-    DepthImage d(kWidth, kHeight);
-    for (int y = 0; y < kHeight; ++y) {
-      for (int x = 0; x < kWidth; ++x) {
-        c.at(x, y, 0) = static_cast<uint8_t>(x * 6);
-        c.at(x, y, 1) = static_cast<uint8_t>(y * 8);
-        c.at(x, y, 2) = static_cast<uint8_t>(i * 50);
-        d.at(x, y) = static_cast<uint16_t>(2000 + 3 * x + y + 100 * i);
-      }
-    }
-    const std::string name = fmt::format("{:06d}", i);
-    WritePng(c, dir / "color" / (name + ".png"));
-    WritePng(d, dir / "depth" / (name + ".png"));
-  }
-  test::WriteText(dir / intrinsic_name,
-                  R"({"width": 40, "height": 30,
-                      "intrinsic_matrix": [35.0, 0.0, 0.0, 0.0, 36.0, 0.0, 19.5, 14.5, 1.0]})");
-  return dir;
-}
+using test::WriteOpen3dFolder;
 
 TEST(Open3dFolder, ReadsTheCameraAndDepthInItsScale) {
   const fs::path tmp = test::TempDir();
-  const fs::path dir = WriteFolder(tmp / "dataset", 3, "intrinsic.json");
+  const fs::path dir = WriteOpen3dFolder(tmp / "dataset", 3, "intrinsic.json");
   EXPECT_EQ(DetectLayout(dir), RecordingLayout::kOpen3dFolder);
   const auto seq = OpenOpen3dFolder(dir, {});
   ASSERT_EQ(seq->size(), 3u);
@@ -72,7 +48,7 @@ TEST(Open3dFolder, ReadsTheCameraAndDepthInItsScale) {
 
 TEST(Open3dFolder, AcceptsTheRecordersFileNameAndRefusesARowMajorMatrix) {
   const fs::path tmp = test::TempDir();
-  const fs::path dir = WriteFolder(tmp / "dataset", 1, "camera_intrinsic.json");
+  const fs::path dir = WriteOpen3dFolder(tmp / "dataset", 1, "camera_intrinsic.json");
   EXPECT_EQ(DetectLayout(dir), RecordingLayout::kOpen3dFolder);
   test::WriteText(dir / "camera_intrinsic.json",
                   R"({"width": 40, "height": 30,
@@ -92,7 +68,7 @@ TEST(Open3dFolder, AcceptsTheRecordersFileNameAndRefusesARowMajorMatrix) {
 
 TEST(Open3dFolder, CountsThatDifferAreRefused) {
   const fs::path tmp = test::TempDir();
-  const fs::path dir = WriteFolder(tmp / "dataset", 3, "intrinsic.json");
+  const fs::path dir = WriteOpen3dFolder(tmp / "dataset", 3, "intrinsic.json");
   fs::remove(dir / "depth" / "000002.png");
   const std::string message = test::ErrorOf([&] { OpenOpen3dFolder(dir, {}); });
   EXPECT_NE(message.find("got 3 in color and 2 in depth/"), std::string::npos) << message;
@@ -100,7 +76,7 @@ TEST(Open3dFolder, CountsThatDifferAreRefused) {
 
 TEST(Open3dFolder, BecomesTheCapturesPullStream) {
   const fs::path tmp = test::TempDir();
-  const fs::path dir = WriteFolder(tmp / "dataset", 4, "intrinsic.json");
+  const fs::path dir = WriteOpen3dFolder(tmp / "dataset", 4, "intrinsic.json");
   CaptureFromOptions options;
   options.pull = dir;
   options.sequence.fps = 15;

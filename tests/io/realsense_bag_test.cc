@@ -1,7 +1,6 @@
-// RealSense .bag files (ROS bag 2.0) written by the test's own writer (below, after the ROS wiki's
-// record layout): records in a chunk (uncompressed, lz4, bz2), colour and depth sensor_msgs/Image
-// topics with their sensor_msgs/CameraInfo and the Depth Units option; pairing by header stamp,
-// depth units, pixel placement, and the bags simtree refuses.
+// RealSense .bag files (ROS bag 2.0) written by the test-support writer
+// (tests/support/ros_bag_writer.h): pairing by header stamp, depth units, pixel placement,
+// compressed chunks, and the bags simtree refuses.
 
 #include <cstring>
 #include <string>
@@ -10,17 +9,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#ifdef SIMTREE_HAVE_LZ4
-#include <lz4frame.h>
-#endif
-#ifdef SIMTREE_HAVE_BZ2
-#include <bzlib.h>
-#endif
-
 #include "simtree/io/capture_from_recordings.h"
 #include "simtree/io/detail/ros_bag.h"
 #include "simtree/io/realsense_bag.h"
 #include "simtree/io/recording_layout.h"
+#include "support/ros_bag_writer.h"
 #include "test_util.h"
 
 namespace simtree {
@@ -29,160 +22,10 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-constexpr int kWidth = 16;
-constexpr int kHeight = 12;
-
-// ROS 1 serialization.
-struct Ser {
-  std::string bytes;
-  template <typename T>
-  Ser& Put(T v) {
-    bytes.append(reinterpret_cast<const char*>(&v), sizeof(T));
-    return *this;
-  }
-  Ser& Str(const std::string& s) {
-    Put<uint32_t>(static_cast<uint32_t>(s.size()));
-    bytes += s;
-    return *this;
-  }
-  Ser& Stamp(double t) {
-    Put<uint32_t>(0);
-    Put<uint32_t>(static_cast<uint32_t>(t));
-    Put<uint32_t>(static_cast<uint32_t>(std::llround((t - static_cast<uint32_t>(t)) * 1e9)));
-    return Str("frame");
-  }
-};
-
-std::string Field(const std::string& name, const std::string& value) {
-  Ser s;
-  s.Str(name + "=" + value);
-  return s.bytes;
-}
-template <typename T>
-std::string Bin(T v) {
-  return std::string(reinterpret_cast<const char*>(&v), sizeof(T));
-}
-std::string Record(const std::string& header, const std::string& data) {
-  Ser s;
-  s.Str(header).Str(data);
-  return s.bytes;
-}
-std::string Connection(uint32_t id, const std::string& topic, const std::string& type) {
-  return Record(Field("op", "\x07") + Field("conn", Bin(id)) + Field("topic", topic),
-                Field("topic", topic) + Field("type", type) + Field("md5sum", "0"));
-}
-std::string Message(uint32_t id, double t, const std::string& data) {
-  const std::string time = Bin(static_cast<uint32_t>(t)) + Bin(uint32_t{0});
-  return Record(Field("op", "\x02") + Field("conn", Bin(id)) + Field("time", time), data);
-}
-
-// Colour (x * 10, y * 20, frame * 30) as bgr8; depth raw 1000 + 7x + y (Depth Units 0.0001 m:
-// 100 + 0.7x + 0.1y mm).
-std::string ColorImage(double t, int frame) {
-  Ser s;
-  s.Stamp(t).Put<uint32_t>(kHeight).Put<uint32_t>(kWidth).Str("bgr8").Put<uint8_t>(0).Put<uint32_t>(
-      kWidth * 3);
-  std::string px;
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x) {
-      px += static_cast<char>(frame * 30);
-      px += static_cast<char>(y * 20);
-      px += static_cast<char>(x * 10);
-    }
-  }
-  s.Str(px);
-  return s.bytes;
-}
-std::string DepthImage16(double t, int width = kWidth) {
-  Ser s;
-  s.Stamp(t)
-      .Put<uint32_t>(kHeight)
-      .Put<uint32_t>(width)
-      .Str("mono16")
-      .Put<uint8_t>(0)
-      .Put<uint32_t>(width * 2);
-  std::string px;
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < width; ++x) px += Bin(static_cast<uint16_t>(1000 + 7 * x + y));
-  }
-  s.Str(px);
-  return s.bytes;
-}
-std::string CameraInfo(double fx) {
-  Ser s;
-  s.Stamp(0).Put<uint32_t>(kHeight).Put<uint32_t>(kWidth).Str("plumb_bob").Put<uint32_t>(5);
-  for (int i = 0; i < 5; ++i) s.Put<double>(0);
-  const double k[9] = {fx, 0, 7.5, 0, fx + 1, 5.5, 0, 0, 1};
-  for (double v : k) s.Put<double>(v);
-  for (int i = 0; i < 9 + 12; ++i) s.Put<double>(0);  // R, P
-  s.Put<uint32_t>(0).Put<uint32_t>(0);                // binning
-  for (int i = 0; i < 4; ++i) s.Put<uint32_t>(0);     // roi
-  s.Put<uint8_t>(0);
-  return s.bytes;
-}
-
-struct BagSpec {
-  std::string compression = "none";
-  double depth_fx = 14;  // the colour camera's fx is 14: equal means registered
-  int depth_width = kWidth;
-};
-
-// The chunk's data as `compression` stores it ("broken": bytes no decompressor accepts).
-std::string Compress(const std::string& data, const std::string& compression) {
-#ifdef SIMTREE_HAVE_LZ4
-  if (compression == "lz4") {
-    std::string out(LZ4F_compressFrameBound(data.size(), nullptr), '\0');
-    out.resize(LZ4F_compressFrame(out.data(), out.size(), data.data(), data.size(), nullptr));
-    return out;
-  }
-#endif
-#ifdef SIMTREE_HAVE_BZ2
-  if (compression == "bz2") {
-    std::string in = data;
-    unsigned int length = static_cast<unsigned int>(data.size() + data.size() / 100 + 600);
-    std::string out(length, '\0');
-    BZ2_bzBuffToBuffCompress(out.data(), &length, in.data(), static_cast<unsigned int>(in.size()),
-                             9, 0, 0);
-    out.resize(length);
-    return out;
-  }
-#endif
-  if (compression == "broken") return std::string(data.size() / 2, 'x');
-  return data;
-}
-
-std::string BagBytes(const BagSpec& spec) {
-  std::string chunk;
-  chunk += Connection(0, "/device_0/sensor_1/Color_0/image/data", "sensor_msgs/Image");
-  chunk += Connection(1, "/device_0/sensor_0/Depth_0/image/data", "sensor_msgs/Image");
-  chunk += Connection(2, "/device_0/sensor_1/Color_0/info/camera_info", "sensor_msgs/CameraInfo");
-  chunk += Connection(3, "/device_0/sensor_0/Depth_0/info/camera_info", "sensor_msgs/CameraInfo");
-  chunk += Connection(4, "/device_0/sensor_0/option/Depth Units/value", "std_msgs/Float32");
-  chunk += Message(2, 1, CameraInfo(14));
-  chunk += Message(3, 1, CameraInfo(spec.depth_fx));
-  chunk += Message(4, 1, Bin(0.0001f));
-  // Depth written before colour, out of order, as bags may interleave them.
-  chunk += Message(1, 1, DepthImage16(1.035, spec.depth_width));
-  chunk += Message(1, 1, DepthImage16(1.002, spec.depth_width));
-  chunk += Message(1, 1, DepthImage16(1.300, spec.depth_width));
-  for (int i = 0; i < 3; ++i) chunk += Message(0, 1, ColorImage(1.0 + 0.033 * i, i));
-  std::string bag = "#ROSBAG V2.0\n";
-  bag += Record(Field("op", "\x03") + Field("index_pos", Bin(uint64_t{0})) +
-                    Field("conn_count", Bin(uint32_t{5})) + Field("chunk_count", Bin(uint32_t{1})),
-                std::string(64, ' '));
-  const std::string compression = spec.compression == "broken" ? "bz2" : spec.compression;
-  bag += Record(Field("op", "\x05") + Field("compression", compression) +
-                    Field("size", Bin(static_cast<uint32_t>(chunk.size()))),
-                Compress(chunk, spec.compression));
-  // The index section repeats the connections after the chunks.
-  bag += Connection(0, "/device_0/sensor_1/Color_0/image/data", "sensor_msgs/Image");
-  return bag;
-}
-
-fs::path WriteBag(const fs::path& path, const BagSpec& spec = {}) {
-  test::WriteText(path, BagBytes(spec));
-  return path;
-}
+using test::BagBytes;
+using test::BagSpec;
+using test::WriteBag;
+constexpr int kWidth = test::kBagWidth;
 
 TEST(RealSenseBag, PairsColourAndDepthByStampInTheBagsUnits) {
   const fs::path bag = WriteBag(test::TempDir() / "rec.bag");
@@ -268,6 +111,17 @@ TEST(RealSenseBag, RefusedBagsSayWhy) {
   test::WriteText(tmp / "v1.bag", "#ROSBAG V1.2\n");
   EXPECT_THAT(test::ErrorOf([&] { OpenRealSenseBag(tmp / "v1.bag", {}); }),
               HasSubstr("expected a ROS bag version 2.0"));
+}
+
+// The fuzzer's input (fuzz/regressions/realsense_bag/): an lz4 chunk whose size field claims 4 GB
+// uncompressed, which the reader allocated before decompressing.
+TEST(RealSenseBag, AChunkClaimingGigabytesIsRefusedNotAllocated) {
+  const fs::path bag =
+      fs::path(SIMTREE_SOURCE_DIR) / "fuzz/regressions/realsense_bag/chunk_claims_4gb.bag";
+  const std::string message = test::ErrorOf([&] { OpenRealSenseBag(bag, {}); });
+  if (!io_detail::RosCompressionSupported("lz4")) GTEST_SKIP() << "built without lz4";
+  EXPECT_THAT(message, HasSubstr("chunk_claims_4gb.bag: the lz4 chunk at byte"));
+  EXPECT_THAT(message, HasSubstr("the header claims 4294962188"));
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
-// TUM RGB-D sequences written by the test: lists, pairing by time, depth units, pixel placement,
-// bad lists, and a sequence through CaptureFromRecordings as a scan view and as the pull stream.
+// TUM RGB-D sequences written by the test-support writer (tests/support/tum_rgbd_writer.h): lists,
+// pairing by time, depth units, pixel placement, bad lists, and a sequence through
+// CaptureFromRecordings as a scan view and as the pull stream.
 
 #include <string>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "simtree/io/detail/time_association.h"
 #include "simtree/io/recording_layout.h"
 #include "simtree/io/tum_rgbd.h"
+#include "support/tum_rgbd_writer.h"
 #include "test_util.h"
 
 namespace simtree {
@@ -18,49 +20,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kWidth = 32;
-constexpr int kHeight = 24;
-
-// Colour (x * 8, y * 8, frame * 40); depth raw 5 * (1000 + x + 10 y) (TUM's 5000 units per
-// metre), i.e. 1000 + x + 10 y millimetres.
-RgbImage Color(int frame) {
-  RgbImage c(kWidth, kHeight);
-  for (int y = 0; y < kHeight; ++y) {
-    for (int x = 0; x < kWidth; ++x) {
-      c.at(x, y, 0) = static_cast<uint8_t>(x * 8);
-      c.at(x, y, 1) = static_cast<uint8_t>(y * 8);
-      c.at(x, y, 2) = static_cast<uint8_t>(frame * 40);
-    }
-  }
-  return c;
-}
-DepthImage RawDepth(int width = kWidth, int height = kHeight) {
-  DepthImage d(width, height);
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) d.at(x, y) = static_cast<uint16_t>(5 * (1000 + x + 10 * y));
-  }
-  return d;
-}
-
-// rgb at 10.000, 10.033, 10.067, 10.100; depth at 10.005, 10.040, 10.070, 10.300: the last of
-// each has no partner within 20 ms.
-fs::path WriteSequence(const fs::path& dir) {
-  fs::create_directories(dir / "rgb");
-  fs::create_directories(dir / "depth");
-  const std::vector<std::string> rgb_t = {"10.000000", "10.033000", "10.067000", "10.100000"};
-  const std::vector<std::string> depth_t = {"10.005000", "10.040000", "10.070000", "10.300000"};
-  std::string rgb = "# color images\n# timestamp filename\n";
-  std::string depth = "# depth maps\n# timestamp filename\n";
-  for (size_t i = 0; i < rgb_t.size(); ++i) {
-    WritePng(Color(static_cast<int>(i)), dir / "rgb" / (rgb_t[i] + ".png"));
-    WritePng(RawDepth(), dir / "depth" / (depth_t[i] + ".png"));
-    rgb += rgb_t[i] + " rgb/" + rgb_t[i] + ".png\n";
-    depth += depth_t[i] + " depth/" + depth_t[i] + ".png\n";
-  }
-  test::WriteText(dir / "rgb.txt", rgb);
-  test::WriteText(dir / "depth.txt", depth);
-  return dir;
-}
+constexpr int kWidth = test::kTumWidth;
+constexpr int kHeight = test::kTumHeight;
+using test::WriteTumSequence;
 
 // TUM's fr3 camera scaled to the test's 32x24 images.
 TumRgbdOptions Fr3() {
@@ -73,7 +35,7 @@ TumRgbdOptions Fr3() {
 
 TEST(TumRgbd, PairsByNearestTimeAndGivesMillimetres) {
   const fs::path tmp = test::TempDir();
-  const fs::path dir = WriteSequence(tmp / "seq");
+  const fs::path dir = WriteTumSequence(tmp / "seq");
   EXPECT_EQ(DetectLayout(dir), RecordingLayout::kTumRgbd);
   const auto seq = OpenTumRgbd(dir, Fr3());
   ASSERT_EQ(seq->size(), 3u);
@@ -103,7 +65,7 @@ TEST(TumRgbd, AssociationTakesTheClosestPairFirstAndUsesEachFrameOnce) {
 
 TEST(TumRgbd, RefusesToGuessTheCamera) {
   const fs::path tmp = test::TempDir();
-  const fs::path dir = WriteSequence(tmp / "seq");
+  const fs::path dir = WriteTumSequence(tmp / "seq");
   const std::string message = test::ErrorOf([&] { OpenTumRgbd(dir, TumRgbdOptions{}); });
   EXPECT_NE(message.find("intrinsics"), std::string::npos) << message;
   EXPECT_NE(message.find("tum-fr1"), std::string::npos) << message;
@@ -112,7 +74,7 @@ TEST(TumRgbd, RefusesToGuessTheCamera) {
 
 TEST(TumRgbd, BadListsNameTheFileAndLine) {
   const fs::path tmp = test::TempDir();
-  const fs::path dir = WriteSequence(tmp / "seq");
+  const fs::path dir = WriteTumSequence(tmp / "seq");
   // A time that goes back.
   test::WriteText(dir / "rgb.txt",
                   "# t f\n10.000000 rgb/10.000000.png\n10.067000 rgb/10.067000.png\n"
@@ -138,8 +100,8 @@ TEST(TumRgbd, BadListsNameTheFileAndLine) {
 
 TEST(TumRgbd, DepthOfTheWrongSizeIsRefusedAndNothingIsWritten) {
   const fs::path tmp = test::TempDir();
-  const fs::path dir = WriteSequence(tmp / "seq");
-  WritePng(RawDepth(kWidth / 2, kHeight / 2), dir / "depth" / "10.040000.png");
+  const fs::path dir = WriteTumSequence(tmp / "seq");
+  WritePng(test::TumRawDepth(kWidth / 2, kHeight / 2), dir / "depth" / "10.040000.png");
   const auto seq = OpenTumRgbd(dir, Fr3());
   const std::string message = test::ErrorOf([&] { seq->Load(1); });
   EXPECT_NE(message.find("10.040000.png: expected a 32x24 depth image"), std::string::npos)
@@ -159,7 +121,7 @@ TEST(TumRgbd, DepthOfTheWrongSizeIsRefusedAndNothingIsWritten) {
 
 TEST(TumRgbd, BecomesAScanViewAndThePullStream) {
   const fs::path tmp = test::TempDir();
-  const fs::path dir = WriteSequence(tmp / "seq");
+  const fs::path dir = WriteTumSequence(tmp / "seq");
   CaptureFromOptions options;
   options.scans = {dir};
   options.pull = dir;

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <climits>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -17,6 +18,7 @@
 #include <fmt/format.h>
 
 #include "simtree/core/error.h"
+#include "simtree/io/detail/cloud_header_check.h"
 
 namespace simtree {
 
@@ -124,6 +126,8 @@ Header ReadHeader(std::ifstream& in, const fs::path& path, uint64_t file_size) {
   h.points = At<uint32_t>(b.data(), 107);
   // 1.4 counts in 64 bits; a writer that filled only the legacy field (formats 0-5) is read too.
   if (h.minor >= 4 && At<uint64_t>(b.data(), 247) > 0) h.points = At<uint64_t>(b.data(), 247);
+  cloud_detail::CheckPointCount(source, "number of point records",
+                                static_cast<int64_t>(std::min<uint64_t>(h.points, INT64_MAX)));
   for (int k = 0; k < 3; ++k) {
     h.scale[k] = At<double>(b.data(), 131 + 8 * k);
     h.offset[k] = At<double>(b.data(), 155 + 8 * k);

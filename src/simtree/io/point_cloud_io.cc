@@ -74,7 +74,11 @@ open3d::geometry::PointCloud ReadTextCloud(const fs::path& path, PointCloudReadR
       if (k == 2) {
         if (std::isfinite(xyz[0]) && std::isfinite(xyz[1]) && std::isfinite(xyz[2])) {
           cloud.points_.emplace_back(xyz[0], xyz[1], xyz[2]);
-          ++report.points;
+          // A text file has no count up front: stop at the limit, before memory runs out.
+          if (++report.points > static_cast<size_t>(cloud_detail::kMaxCloudPoints)) {
+            cloud_detail::CheckPointCount(path.string(), fmt::format("line {}", line),
+                                          static_cast<int64_t>(report.points));
+          }
         } else {
           if (report.dropped_non_finite == 0) report.first_non_finite_line = line;
           ++report.dropped_non_finite;

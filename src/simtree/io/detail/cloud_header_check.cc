@@ -74,7 +74,17 @@ bool Fits(int64_t count, int64_t bytes, int64_t available) {
 
 }  // namespace
 
-void CheckPlyHeader(const fs::path& path) {
+void CheckPointCount(const std::string& source, const std::string& where, int64_t points,
+                     int64_t max_points) {
+  if (points <= max_points) return;
+  throw InputError(source, where,
+                   fmt::format("{} points or more; simtree reads at most {} (memory: "
+                               "about 72 bytes a point): thin the cloud first, e.g. voxel "
+                               "down-sampling to 5 mm keeps a tree's shape",
+                               points, max_points));
+}
+
+void CheckPlyHeader(const fs::path& path, int64_t max_points) {
   std::ifstream in(path, std::ios::binary);
   const std::string source = path.string();
   std::string line;
@@ -124,6 +134,7 @@ void CheckPlyHeader(const fs::path& path) {
             source, where,
             fmt::format("expected a whole number of \"{}\" items, got \"{}\"", w[1], w[2]));
       }
+      if (w[1] == "vertex") CheckPointCount(source, where, *count, max_points);
       elements.push_back({w[1], *count, 0, number});
     } else if (keyword == "property" && !elements.empty() &&
                ((w.size() == 3 && PlyTypeBytes(w[1])) ||
@@ -143,7 +154,7 @@ void CheckPlyHeader(const fs::path& path) {
   throw InputError(source, "", "expected \"end_header\" to close the PLY header");
 }
 
-void CheckPcdHeader(const fs::path& path) {
+void CheckPcdHeader(const fs::path& path, int64_t max_points) {
   std::ifstream in(path, std::ios::binary);
   const int64_t file_bytes = static_cast<int64_t>(fs::file_size(path));
   const std::string source = path.string();
@@ -219,6 +230,7 @@ void CheckPcdHeader(const fs::path& path) {
       points = number();
     } else if (w[0].starts_with("DATA")) {
       if (points < 0) return;  // Open3D refuses it
+      CheckPointCount(source, where, points, max_points);
       const std::string data = w.size() >= 2 ? w[1] : "ascii";
       int64_t point_bytes = 0, values = 0;
       for (size_t i = 0; i < fields; ++i) {

@@ -103,9 +103,18 @@ class ChunkSource : public Source {
                    fmt::format("the {} chunk at byte {}", chunk.compression, chunk.offset), why);
 }
 
+// The most a chunk may hold uncompressed. rosbag writes chunks of 768 KiB (a larger message gets
+// one of its own: a 1920x1080 colour image is 6 MB). The size field is allocated before
+// decompressing, so a damaged one must be refused, not become a 4 GB allocation.
+constexpr uint32_t kMaxChunkBytes = 256u << 20;
+
 std::string Decompress(const RosChunk& chunk, const std::string& compressed, const fs::path& path) {
   if (chunk.compression == "none") return compressed;
   const auto fail = [&](const std::string& why) { ChunkFail(chunk, path, why); };
+  if (chunk.uncompressed_size > kMaxChunkBytes) {
+    fail(fmt::format("size: expected at most {} bytes uncompressed, the header claims {}",
+                     kMaxChunkBytes, chunk.uncompressed_size));
+  }
   std::string out(chunk.uncompressed_size, '\0');
 #ifdef SIMTREE_HAVE_LZ4
   if (chunk.compression == "lz4") {
