@@ -9,35 +9,15 @@
 #include <gtest/gtest.h>
 
 #include "simtree/capture_check/capture_check.h"
-#include "simtree/synth/synth.h"
+#include "support/quick_capture.h"
 #include "test_util.h"
 
 namespace simtree::capture_check {
 
 namespace fs = std::filesystem;
 
-// One quick synthetic capture shared by the tests of this file (written once).
-inline const fs::path& QuickCapture() {
-  static const fs::path root = [] {
-    const fs::path dir = fs::path(SIMTREE_TEST_TMP_DIR) / "quick_capture";
-    if (!fs::exists(dir / "capture.json")) {
-      synth::SynthOptions options;
-      options.quick = true;
-      options.seed = 3;
-      options.duration_s = 2.0;
-      options.contact_sheet = false;
-      synth::RunSynth(options, dir);
-    }
-    return dir;
-  }();
-  return root;
-}
-
-inline fs::path CopyOfCapture() {
-  const fs::path dir = test::TempDir() / "capture";
-  fs::copy(QuickCapture(), dir, fs::copy_options::recursive);
-  return dir;
-}
+using test::QuickCapture;
+inline fs::path CopyOfCapture() { return test::CopyOfQuickCapture(); }
 
 inline CaptureCheckOptions NoRegistration() {
   CaptureCheckOptions o;

@@ -5,7 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "simtree/core/error.h"
-#include "simtree/synth/synth.h"
+#include "support/quick_capture.h"
 #include "test_util.h"
 
 namespace fs = std::filesystem;
@@ -13,29 +13,8 @@ namespace fs = std::filesystem;
 namespace simtree::preprocessing {
 namespace {
 
-// One quick synthetic capture shared by the tests of this file (written once).
-const fs::path& QuickCapture() {
-  static const fs::path root = [] {
-    const fs::path dir = fs::path(SIMTREE_TEST_TMP_DIR) / "quick_capture";
-    if (!fs::exists(dir / "capture.json")) {
-      synth::SynthOptions options;
-      options.quick = true;
-      options.seed = 3;
-      options.duration_s = 2.0;  // just past the quick pull's release at 1.8 s
-      options.contact_sheet = false;
-      synth::RunSynth(options, dir);
-    }
-    return dir;
-  }();
-  return root;
-}
-
-// A copy of the quick capture to spoil.
-fs::path CopyOfCapture() {
-  const fs::path dir = test::TempDir() / "capture";
-  fs::copy(QuickCapture(), dir, fs::copy_options::recursive);
-  return dir;
-}
+using test::QuickCapture;
+fs::path CopyOfCapture() { return test::CopyOfQuickCapture(); }
 
 TEST(CaptureViews, EveryViewOfACaptureIsPreprocessed) {
   const auto views = PreprocessCaptureViews(OpenCapture(QuickCapture()));
