@@ -9,6 +9,7 @@
 
 #include "core/tree_fixtures.h"
 #include "simtree/core/error.h"
+#include "simtree/core/units.h"
 #include "simtree/synth/detail/fem_modes.h"
 #include "simtree/synth/detail/fem_response.h"
 #include "synth/fem_test_trees.h"
@@ -17,8 +18,6 @@ namespace simtree::synth {
 namespace {
 
 using ::testing::HasSubstr;
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Tip deflection P L^3 / 3EI, in two planes and along an axis that is not a world axis.
 TEST(FemModel, CantileverTipDeflectionMatchesClosedForm) {

@@ -7,11 +7,10 @@
 #include <fmt/format.h>
 
 #include "simtree/core/statistics.h"
+#include "simtree/core/units.h"
 
 namespace simtree::eval {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 ValueScore Score(double truth_f, double truth_z, double f, double z) {
   ValueScore s;

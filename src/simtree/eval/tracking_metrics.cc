@@ -8,11 +8,10 @@
 #include <fmt/format.h>
 
 #include "simtree/core/error.h"
+#include "simtree/core/units.h"
 
 namespace simtree::eval {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double Median(std::vector<double> v) {
   if (v.empty()) return kNaN;

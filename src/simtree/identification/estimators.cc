@@ -11,8 +11,6 @@
 namespace simtree::identification {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
 ModalEstimate Failed(EstimateStatus status, std::string message) {
   ModalEstimate e;
   e.status = status;

@@ -9,12 +9,12 @@
 #include "simtree/core/error.h"
 #include "simtree/core/json_util.h"
 #include "simtree/core/tree_json.h"
+#include "simtree/core/units.h"
 
 namespace simtree::identification {
 namespace {
 
 using ojson = nlohmann::ordered_json;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 ojson Number(double x) { return std::isfinite(x) ? ojson(x) : ojson(nullptr); }

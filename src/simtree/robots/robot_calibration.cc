@@ -8,14 +8,13 @@
 
 #include "simtree/core/error.h"
 #include "simtree/core/option_checks.h"
+#include "simtree/core/units.h"
 #include "simtree/robots/detail/coupled_tuning.h"
 #include "simtree/robots/detail/joint_space_model.h"
 #include "simtree/robots/detail/spatial_inertia.h"
 
 namespace simtree::robots {
 namespace {
-
-constexpr double kTwoPi = 6.28318530717958647692;
 
 using detail::Matrix6d;
 using detail::Vector6d;

@@ -7,12 +7,11 @@
 
 #include "simtree/core/error.h"
 #include "simtree/core/option_checks.h"
+#include "simtree/core/units.h"
 #include "simtree/core/validate.h"
 
 namespace simtree::robots {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 const char* HingeSuffix(HingeKind kind) {
   switch (kind) {

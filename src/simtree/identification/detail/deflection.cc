@@ -11,11 +11,10 @@
 
 #include "simtree/core/frames.h"
 #include "simtree/core/option_checks.h"
+#include "simtree/core/units.h"
 
 namespace simtree::identification {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Mean valid position over frames [begin, end); NaN when none is valid.
 Eigen::Vector3d MeanPosition(const MarkerTrack& track, int begin, int end) {

@@ -11,11 +11,10 @@
 
 #include "simtree/core/option_checks.h"
 #include "simtree/core/statistics.h"
+#include "simtree/core/units.h"
 
 namespace simtree::identification {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 struct MarkerMotion {
   std::vector<double> speed;  // speed[i]: over the `lag` frames before frame i (NaN when unknown)

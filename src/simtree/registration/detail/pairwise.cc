@@ -12,11 +12,10 @@
 #include <fmt/format.h>
 
 #include "simtree/core/option_checks.h"
+#include "simtree/core/units.h"
 
 namespace simtree::registration {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double AngleDeg(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b)) * 180.0 / std::numbers::pi;

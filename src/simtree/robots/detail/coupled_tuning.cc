@@ -8,12 +8,12 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
+#include "simtree/core/units.h"
 #include "simtree/robots/detail/joint_space_model.h"
 
 namespace simtree::robots::detail {
 namespace {
 
-constexpr double kTwoPi = 6.28318530717958647692;
 constexpr double kMaxLogStep = 0.5;  // a stiffness scale changes by at most e^0.5 a step
 
 // One branch's hinges of one bending plane, with its targets.

@@ -10,11 +10,10 @@
 #include "simtree/core/error.h"
 #include "simtree/core/option_checks.h"
 #include "simtree/core/statistics.h"
+#include "simtree/core/units.h"
 
 namespace simtree::simready {
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Predictors of a branch for a model: (1), (1, log(r/L^2)) or (1, log r, log L).
 Eigen::VectorXd Features(FrequencyModelKind kind, double radius, double length) {
