@@ -14,7 +14,7 @@
 namespace simtree::identification {
 namespace {
 
-double Relative(double estimate, double truth) { return std::abs(estimate / truth - 1.0); }
+double RelativeError(double estimate, double truth) { return std::abs(estimate / truth - 1.0); }
 
 // Two modes 5% apart (beat period 18.5 s, longer than the 10 s record) with the same damping,
 // mixed in a different ratio by each of six links, 30 fps, 2% noise: the magnolia's case.
@@ -51,11 +51,11 @@ TEST(JointPoles, CloseModesMixedDifferentlyByEachLinkAreResolvedTogether) {
       ASSERT_EQ(e.status, EstimateStatus::kOk) << e.message;
       // The dominant mode is the one the link mixes in more.
       const double truth_f = k < 3 ? kF1 : kF2;
-      EXPECT_LT(Relative(e.frequency_hz, truth_f), 0.005) << "seed " << seed << " link " << k;
-      EXPECT_LT(Relative(e.damping_ratio, kZeta), 0.12) << "seed " << seed << " link " << k;
+      EXPECT_LT(RelativeError(e.frequency_hz, truth_f), 0.005) << "seed " << seed << " link " << k;
+      EXPECT_LT(RelativeError(e.damping_ratio, kZeta), 0.12) << "seed " << seed << " link " << k;
       EXPECT_TRUE(std::isfinite(e.damping_std) && e.damping_std > 0);
-      worst_own = std::max(worst_own, Relative(own.damping_ratio, kZeta));
-      worst_joint = std::max(worst_joint, Relative(e.damping_ratio, kZeta));
+      worst_own = std::max(worst_own, RelativeError(own.damping_ratio, kZeta));
+      worst_joint = std::max(worst_joint, RelativeError(e.damping_ratio, kZeta));
     }
     EXPECT_GT(worst_own, 1.5 * worst_joint) << "seed " << seed;
   }
@@ -84,8 +84,8 @@ TEST(JointPoles, APairMergedOnTheComponentsIsSplitOnTheLinks) {
     // A pole within 0.5% of f, and with damping within `zeta_tolerance` when one is given.
     auto found = [](const JointPoles& j, double f, double zeta_tolerance) {
       return std::any_of(j.fit.modes.begin(), j.fit.modes.end(), [&](const FittedMode& m) {
-        return Relative(m.frequency_hz, f) < 0.005 &&
-               Relative(m.damping_ratio, kZeta) < zeta_tolerance;
+        return RelativeError(m.frequency_hz, f) < 0.005 &&
+               RelativeError(m.damping_ratio, kZeta) < zeta_tolerance;
       });
     };
     constexpr double kAny = 1e9;

@@ -11,6 +11,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "io/cloud_read_error.h"
 #include "simtree/io/las_io.h"
 #include "simtree/io/point_cloud_io.h"
 #include "support/las_writer.h"
@@ -85,50 +86,48 @@ TEST(LasIo, SixteenBitColourAndTheCloudReaderFront) {
   EXPECT_NEAR(cloud.colors_[0].y(), 0.5, 1e-4);
 }
 
-std::string ErrorOf(const fs::path& path) {
-  return test::ErrorOf([&] { ReadPointCloud(path); });
-}
-
 TEST(LasIo, RefusedFilesSayWhy) {
   const fs::path dir = test::TempDir();
   // A format-0 file relabelled format 4 (waveforms): the format alone decides.
   std::string waveform = LasBytes(LasSpec{}, kPoints);
   waveform[test::kLasPointFormatAt] = 4;
   test::WriteText(dir / "waveform.las", waveform);
-  EXPECT_THAT(ErrorOf(dir / "waveform.las"),
+  EXPECT_THAT(test::CloudReadError(dir / "waveform.las"),
               HasSubstr("waveform.las: point data format: point format 4 is not read"));
 
   std::string laz = LasBytes(LasSpec{}, kPoints);
   laz[test::kLasPointFormatAt] = static_cast<char>(0x80 | 3);  // how LAZ marks compressed format 3
   test::WriteText(dir / "renamed.las", laz);
-  EXPECT_THAT(ErrorOf(dir / "renamed.las"), HasSubstr("LAZ (compressed LAS) is not read"));
+  EXPECT_THAT(test::CloudReadError(dir / "renamed.las"),
+              HasSubstr("LAZ (compressed LAS) is not read"));
   test::WriteText(dir / "scan.laz", laz);
-  EXPECT_THAT(ErrorOf(dir / "scan.laz"), HasSubstr("laszip -i scan.laz -o scan.las"));
+  EXPECT_THAT(test::CloudReadError(dir / "scan.laz"), HasSubstr("laszip -i scan.laz -o scan.las"));
 
   std::string truncated = LasBytes(LasSpec{}, kPoints);
   truncated.resize(truncated.size() - 5);
   test::WriteText(dir / "truncated.las", truncated);
-  EXPECT_THAT(ErrorOf(dir / "truncated.las"),
+  EXPECT_THAT(test::CloudReadError(dir / "truncated.las"),
               HasSubstr("the header says 2 points of 20 bytes from byte 227, the file holds 1"));
 
   std::string short_record = LasBytes(LasSpec{}, kPoints);
   short_record[test::kLasPointFormatAt] = 2;  // colour formats need 26 bytes, the records have 20
   test::WriteText(dir / "short.las", short_record);
-  EXPECT_THAT(ErrorOf(dir / "short.las"),
+  EXPECT_THAT(test::CloudReadError(dir / "short.las"),
               HasSubstr("expected at least 26 bytes for point format 2"));
 
   std::string not_las = LasBytes(LasSpec{}, kPoints);
   not_las[0] = 'X';
   test::WriteText(dir / "not.las", not_las);
-  EXPECT_THAT(ErrorOf(dir / "not.las"), HasSubstr("not a LAS file"));
+  EXPECT_THAT(test::CloudReadError(dir / "not.las"), HasSubstr("not a LAS file"));
 
   LasSpec zero_scale;
   zero_scale.scale[1] = 0;
   WriteLas(dir / "scale.las", zero_scale, kPoints);
-  EXPECT_THAT(ErrorOf(dir / "scale.las"), HasSubstr("y scale factor and offset"));
+  EXPECT_THAT(test::CloudReadError(dir / "scale.las"), HasSubstr("y scale factor and offset"));
 
   WriteLas(dir / "empty.las", LasSpec{}, {});
-  EXPECT_THAT(ErrorOf(dir / "empty.las"), HasSubstr("expected points, the file has none"));
+  EXPECT_THAT(test::CloudReadError(dir / "empty.las"),
+              HasSubstr("expected points, the file has none"));
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "io/cloud_read_error.h"
 #include "simtree/core/error.h"
 #include "test_util.h"
 
@@ -12,15 +13,6 @@ namespace simtree {
 namespace {
 
 using ::testing::HasSubstr;
-
-std::string ErrorOf(const std::filesystem::path& path) {
-  try {
-    ReadPointCloud(path);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(PointCloudIo, ReadsTheRealScans) {
   PointCloudReadReport report;
@@ -44,23 +36,25 @@ TEST(PointCloudIo, DropsNonFinitePointsAndSaysWhere) {
 TEST(PointCloudIo, BadFilesAreClearErrors) {
   const auto dir = test::TempDir();
   test::WriteText(dir / "empty.xyz", "");
-  EXPECT_THAT(ErrorOf(dir / "empty.xyz"),
+  EXPECT_THAT(test::CloudReadError(dir / "empty.xyz"),
               HasSubstr("empty.xyz: expected points, the file has none"));
   test::WriteText(dir / "nan.xyz", "nan nan nan\nnan 1 2\n");
-  EXPECT_THAT(ErrorOf(dir / "nan.xyz"), HasSubstr("every point has NaN or infinite coordinates"));
+  EXPECT_THAT(test::CloudReadError(dir / "nan.xyz"),
+              HasSubstr("every point has NaN or infinite coordinates"));
   test::WriteText(dir / "bad.xyz", "1 2 3\n4 five 6\n");
-  EXPECT_THAT(ErrorOf(dir / "bad.xyz"), HasSubstr("bad.xyz: line 2: expected 3 numbers"));
+  EXPECT_THAT(test::CloudReadError(dir / "bad.xyz"),
+              HasSubstr("bad.xyz: line 2: expected 3 numbers"));
   test::WriteText(dir / "short.xyz", "1 2 3\n4 5\n");
-  EXPECT_THAT(ErrorOf(dir / "short.xyz"), HasSubstr("line 2: expected 3 numbers"));
+  EXPECT_THAT(test::CloudReadError(dir / "short.xyz"), HasSubstr("line 2: expected 3 numbers"));
   test::WriteText(dir / "empty.ply", "");
-  EXPECT_THAT(ErrorOf(dir / "empty.ply"), HasSubstr("the file is empty"));
+  EXPECT_THAT(test::CloudReadError(dir / "empty.ply"), HasSubstr("the file is empty"));
   test::WriteText(dir / "junk.ply", "ply\nformat ascii 1.0\nelement vertex 10\n");
-  EXPECT_THAT(ErrorOf(dir / "junk.ply"), HasSubstr("junk.ply"));
-  EXPECT_THAT(ErrorOf(dir / "c.e57"), HasSubstr("no such file"));
+  EXPECT_THAT(test::CloudReadError(dir / "junk.ply"), HasSubstr("junk.ply"));
+  EXPECT_THAT(test::CloudReadError(dir / "c.e57"), HasSubstr("no such file"));
   test::WriteText(dir / "c.e57", "x");
-  EXPECT_THAT(ErrorOf(dir / "c.e57"), HasSubstr("expected a point cloud ending in"));
+  EXPECT_THAT(test::CloudReadError(dir / "c.e57"), HasSubstr("expected a point cloud ending in"));
   test::WriteText(dir / "c.las", "x");
-  EXPECT_THAT(ErrorOf(dir / "c.las"), HasSubstr("c.las: expected a LAS header"));
+  EXPECT_THAT(test::CloudReadError(dir / "c.las"), HasSubstr("c.las: expected a LAS header"));
 }
 
 // Headers that claim more than their file holds are refused before Open3D allocates for them or
@@ -75,19 +69,21 @@ TEST(PointCloudIo, HeadersClaimingMoreThanTheFileHoldsAreRefused) {
     test::WriteText(dir / name, text);
     return dir / name;
   };
-  EXPECT_THAT(ErrorOf(write("million.ply",
-                            "ply\nformat binary_little_endian 1.0\nelement vertex 10000000\n"
-                            "property float x\nproperty float y\nproperty float z\nend_header\n",
-                            24)),
+  EXPECT_THAT(test::CloudReadError(
+                  write("million.ply",
+                        "ply\nformat binary_little_endian 1.0\nelement vertex 10000000\n"
+                        "property float x\nproperty float y\nproperty float z\nend_header\n",
+                        24)),
               HasSubstr("million.ply: header line 3: element \"vertex\" claims 10000000 items "
                         "of at least 12 bytes, but the file has 24 bytes after its header"));
   const std::string pcd = "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 2\nHEIGHT 1\n";
-  EXPECT_THAT(ErrorOf(write("many.pcd", pcd + "POINTS 19000000\nDATA binary\n", 24)),
+  EXPECT_THAT(test::CloudReadError(write("many.pcd", pcd + "POINTS 19000000\nDATA binary\n", 24)),
               HasSubstr("many.pcd: header line 8: the header claims 19000000 points"));
-  EXPECT_THAT(
-      ErrorOf(write("count.pcd", "FIELDS x y z\nCOUNT 1 -1 1\nPOINTS 1\nDATA ascii\n1 2 3\n", 0)),
-      HasSubstr("count.pcd: header line 2: expected whole numbers for COUNT, got \"-1\""));
-  EXPECT_THAT(ErrorOf(write("size.pcd", "FIELDS x y z\nSIZE 4 3 4\nPOINTS 1\nDATA binary\n", 11)),
+  EXPECT_THAT(test::CloudReadError(write(
+                  "count.pcd", "FIELDS x y z\nCOUNT 1 -1 1\nPOINTS 1\nDATA ascii\n1 2 3\n", 0)),
+              HasSubstr("count.pcd: header line 2: expected whole numbers for COUNT, got \"-1\""));
+  EXPECT_THAT(test::CloudReadError(
+                  write("size.pcd", "FIELDS x y z\nSIZE 4 3 4\nPOINTS 1\nDATA binary\n", 11)),
               HasSubstr("expected SIZE 1, 2, 4 or 8, got 3"));
   // Compressed data whose uncompressed size (8, little-endian after the sizes' 4) is not the
   // points' 24 bytes: Open3D would read past its buffer.
@@ -95,8 +91,9 @@ TEST(PointCloudIo, HeadersClaimingMoreThanTheFileHoldsAreRefused) {
   lie += "POINTS 2\nDATA binary_compressed\n";
   lie.append(std::string("\x04\0\0\0\x08\0\0\0abcd", 12));
   test::WriteText(dir / "lie.pcd", lie);
-  EXPECT_THAT(ErrorOf(dir / "lie.pcd"), HasSubstr("the compressed data claims 4 bytes (8 "
-                                                  "uncompressed) for 2 points of 12 bytes"));
+  EXPECT_THAT(test::CloudReadError(dir / "lie.pcd"),
+              HasSubstr("the compressed data claims 4 bytes (8 "
+                        "uncompressed) for 2 points of 12 bytes"));
 }
 
 // Lines Open3D's rply would skip or split differently are refused by name, not left to rply.
@@ -106,7 +103,7 @@ TEST(PointCloudIo, PlyHeaderLinesOutsideTheGrammarAreRefused) {
   const std::string xyz = "property float x\nproperty float y\nproperty float z\n";
   auto error = [&](const char* name, const std::string& text) {
     test::WriteText(dir / name, text);
-    return ErrorOf(dir / name);
+    return test::CloudReadError(dir / name);
   };
   EXPECT_THAT(error("type.ply", head + "property vec3 x\n" + xyz + "end_header\n1 2 3\n"),
               HasSubstr("type.ply: header line 4: expected \"format\""));
@@ -136,13 +133,13 @@ TEST(PointCloudIo, PlyHeaderLinesOutsideTheGrammarAreRefused) {
 TEST(PointCloudIo, TheFuzzersFindingsAreInputErrors) {
   const std::filesystem::path regressions =
       std::filesystem::path(SIMTREE_SOURCE_DIR) / "fuzz/regressions";
-  EXPECT_THAT(ErrorOf(regressions / "point_cloud_ply/billion_points.ply"),
+  EXPECT_THAT(test::CloudReadError(regressions / "point_cloud_ply/billion_points.ply"),
               HasSubstr("1000000000 points or more"));
-  EXPECT_THAT(ErrorOf(regressions / "point_cloud_ply/property_without_type.ply"),
+  EXPECT_THAT(test::CloudReadError(regressions / "point_cloud_ply/property_without_type.ply"),
               HasSubstr("header line 6: expected \"format\""));
-  EXPECT_THAT(ErrorOf(regressions / "point_cloud_ply/end_header_at_eof.ply"),
+  EXPECT_THAT(test::CloudReadError(regressions / "point_cloud_ply/end_header_at_eof.ply"),
               HasSubstr("expected a newline after \"end_header\""));
-  EXPECT_THAT(ErrorOf(regressions / "point_cloud_pcd/two_of_three_normals.pcd"),
+  EXPECT_THAT(test::CloudReadError(regressions / "point_cloud_pcd/two_of_three_normals.pcd"),
               HasSubstr("header line 3: expected all three of normal_x, normal_y and normal_z"));
 }
 

@@ -8,6 +8,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "io/cloud_read_error.h"
 #include "simtree/io/detail/cloud_header_check.h"
 #include "simtree/io/point_cloud_io.h"
 #include "support/las_writer.h"
@@ -20,10 +21,6 @@ namespace fs = std::filesystem;
 using ::testing::AllOf;
 using ::testing::HasSubstr;
 
-std::string ErrorOf(const fs::path& path) {
-  return test::ErrorOf([&] { ReadPointCloud(path); });
-}
-
 const auto kRefusedAsTooLarge = AllOf(HasSubstr("50000000 points or more"),
                                       HasSubstr("at most 20000000"), HasSubstr("thin the cloud"));
 
@@ -35,19 +32,19 @@ TEST(PointCloudLimits, FiftyMillionPointHeadersAreRefusedBeforeReading) {
                   "ply\nformat binary_little_endian 1.0\nelement vertex 50000000\n"
                   "property float x\nproperty float y\nproperty float z\nend_header\n" +
                       xyz);
-  EXPECT_THAT(ErrorOf(dir / "big.ply"),
+  EXPECT_THAT(test::CloudReadError(dir / "big.ply"),
               AllOf(HasSubstr("big.ply: header line 3"), kRefusedAsTooLarge));
   test::WriteText(dir / "big.pcd",
                   "VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
                   "WIDTH 50000000\nHEIGHT 1\nPOINTS 50000000\nDATA binary\n" +
                       xyz);
-  EXPECT_THAT(ErrorOf(dir / "big.pcd"),
+  EXPECT_THAT(test::CloudReadError(dir / "big.pcd"),
               AllOf(HasSubstr("big.pcd: header line 9"), kRefusedAsTooLarge));
   std::string las = test::LasBytes({}, {{0, 0, 0}, {1, 1, 1}});
   const uint32_t claim = 50'000'000;
   std::memcpy(las.data() + test::kLasLegacyCountAt, &claim, 4);
   test::WriteText(dir / "big.las", las);
-  EXPECT_THAT(ErrorOf(dir / "big.las"),
+  EXPECT_THAT(test::CloudReadError(dir / "big.las"),
               AllOf(HasSubstr("big.las: number of point records"), kRefusedAsTooLarge));
 }
 

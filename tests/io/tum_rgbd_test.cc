@@ -20,16 +20,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kWidth = test::kTumWidth;
-constexpr int kHeight = test::kTumHeight;
+using test::kTumHeight;
+using test::kTumWidth;
 using test::WriteTumSequence;
 
 // TUM's fr3 camera scaled to the test's 32x24 images.
 TumRgbdOptions Fr3() {
   TumRgbdOptions o;
   CameraIntrinsics k = TumCamera("tum-fr3");
-  const double s = static_cast<double>(kWidth) / k.width;
-  o.intrinsics = CameraIntrinsics{kWidth, kHeight, k.fx * s, k.fy * s, k.cx * s, k.cy * s, 0.001};
+  const double s = static_cast<double>(kTumWidth) / k.width;
+  o.intrinsics =
+      CameraIntrinsics{kTumWidth, kTumHeight, k.fx * s, k.fy * s, k.cx * s, k.cy * s, 0.001};
   return o;
 }
 
@@ -50,7 +51,7 @@ TEST(TumRgbd, PairsByNearestTimeAndGivesMillimetres) {
   EXPECT_EQ(frame.color.at(5, 7, 2), 80);  // the third colour image
   EXPECT_EQ(frame.depth.at(0, 0), 1000);
   EXPECT_EQ(frame.depth.at(5, 7), 1075);
-  EXPECT_EQ(frame.depth.at(kWidth - 1, kHeight - 1), 1000 + 31 + 230);
+  EXPECT_EQ(frame.depth.at(kTumWidth - 1, kTumHeight - 1), 1000 + 31 + 230);
 }
 
 TEST(TumRgbd, AssociationTakesTheClosestPairFirstAndUsesEachFrameOnce) {
@@ -101,7 +102,7 @@ TEST(TumRgbd, BadListsNameTheFileAndLine) {
 TEST(TumRgbd, DepthOfTheWrongSizeIsRefusedAndNothingIsWritten) {
   const fs::path tmp = test::TempDir();
   const fs::path dir = WriteTumSequence(tmp / "seq");
-  WritePng(test::TumRawDepth(kWidth / 2, kHeight / 2), dir / "depth" / "10.040000.png");
+  WritePng(test::TumRawDepth(kTumWidth / 2, kTumHeight / 2), dir / "depth" / "10.040000.png");
   const auto seq = OpenTumRgbd(dir, Fr3());
   const std::string message = test::ErrorOf([&] { seq->Load(1); });
   EXPECT_NE(message.find("10.040000.png: expected a 32x24 depth image"), std::string::npos)
@@ -150,7 +151,7 @@ TEST(TumRgbd, BecomesAScanViewAndThePullStream) {
   EXPECT_NEAR(frames[2].time_s, 0.067, 1e-9);
   const RgbdImage last = LoadPullFrame(*capture.pull, 2);
   EXPECT_EQ(last.color.at(5, 7, 2), 80);
-  EXPECT_EQ(last.depth.at(kWidth - 1, 0), 1031);
+  EXPECT_EQ(last.depth.at(kTumWidth - 1, 0), 1031);
 }
 
 }  // namespace

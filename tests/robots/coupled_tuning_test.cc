@@ -11,7 +11,7 @@
 
 #include <gtest/gtest.h>
 
-#include "simtree/core/tree_file.h"
+#include "robots/authors_tree.h"
 #include "simtree/robots/export_robot.h"
 #include "test_util.h"
 
@@ -19,9 +19,7 @@ namespace simtree::robots {
 namespace {
 
 TEST(CoupledTuning, DISABLED_ConvergesOnAuthorsTree01) {
-  TreeFileOptions file;
-  file.legacy_parameters = test::SharedData("authors-demo/tree_parameters.txt");
-  const Tree tree = ReadTreeFile(test::SharedData("authors-demo/tree_model/tree01.txt"), file);
+  const Tree tree = test::AuthorsTree01();
   ExportOptions options;
   options.calibration.coupled_iterations = 20;
   CalibrationReport report;

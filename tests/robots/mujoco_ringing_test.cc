@@ -7,7 +7,8 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
-#include "simtree/core/tree_file.h"
+#include "robots/authors_tree.h"
+#include "simtree/core/units.h"
 #include "simtree/robots/export_robot.h"
 #include "simtree/robots/mujoco_pull.h"
 #include "test_util.h"
@@ -15,16 +16,8 @@
 namespace simtree::robots {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 double ModalStiffnessOf(double mass_kg, double frequency_hz) {
   return 4.0 * kPi * kPi * frequency_hz * frequency_hz * mass_kg;
-}
-
-Tree AuthorsTree01() {
-  TreeFileOptions options;
-  options.legacy_parameters = test::SharedData("authors-demo/tree_parameters.txt");
-  return ReadTreeFile(test::SharedData("authors-demo/tree_model/tree01.txt"), options);
 }
 
 double SubtreeMass(const RobotModel& model, int branch, const Tree& tree) {
@@ -107,7 +100,7 @@ TEST(MujocoRinging, LoneBranchRingsAtItsMaterial) {
 // them back) moves the ringing; detail/coupled_tuning.h does not converge on tree01 yet
 // (coupled_tuning_test.cc). Run it with --gtest_also_run_disabled_tests to see the numbers.
 TEST(MujocoRinging, DISABLED_AuthorsTree01FirstLevelBranchesRingAtTheirMaterials) {
-  const Tree tree = AuthorsTree01();
+  const Tree tree = test::AuthorsTree01();
   ExportOptions options;
   options.calibration.time_step_s = 0.001;  // stable here (stiffness-proportional damping)
   const auto xml = test::TempDir() / "tree01.xml";

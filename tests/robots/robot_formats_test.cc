@@ -13,23 +13,17 @@
 
 #include <sdf/sdf.hh>
 
-#include "simtree/core/tree_file.h"
+#include "robots/authors_tree.h"
 #include "simtree/robots/export_robot.h"
 #include "test_util.h"
 
 namespace simtree::robots {
 namespace {
 
-Tree AuthorsTree01() {
-  TreeFileOptions options;
-  options.legacy_parameters = test::SharedData("authors-demo/tree_parameters.txt");
-  return ReadTreeFile(test::SharedData("authors-demo/tree_model/tree01.txt"), options);
-}
-
 class RobotFormats : public ::testing::Test {
  protected:
   void SetUp() override {
-    tree_ = AuthorsTree01();
+    tree_ = test::AuthorsTree01();
     options_.model.segments_per_branch = 3;
     model_ = MakeRobotModel(tree_, options_);
   }

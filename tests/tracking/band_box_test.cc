@@ -3,17 +3,11 @@
 #include <gtest/gtest.h>
 
 #include "drawn_stream.h"
+#include "simtree/eval/tracking_metrics.h"
 #include "simtree/tracking/detail/marker_tracker.h"
 
 namespace simtree::tracking::detail {
 namespace {
-
-double Iou(const std::array<double, 4>& a, const std::array<double, 4>& b) {
-  const double w = std::min(a[0] + a[2], b[0] + b[2]) - std::max(a[0], b[0]);
-  const double h = std::min(a[1] + a[3], b[1] + b[3]) - std::max(a[1], b[1]);
-  if (w <= 0 || h <= 0) return 0.0;
-  return w * h / (a[2] * a[3] + b[2] * b[3] - w * h);
-}
 
 TEST(MarkerTrackerBox, APartlyHiddenTapeKeepsItsWholeBandsBox) {
   test::DrawnStream s;
@@ -42,7 +36,7 @@ TEST(MarkerTrackerBox, APartlyHiddenTapeKeepsItsWholeBandsBox) {
     ASSERT_EQ(r[0].box.state, MarkerState::kTracked) << "frame " << f;
     const std::array<double, 4>& box = r[0].box.box;
     if (!hidden) {
-      EXPECT_GT(Iou(box, truth), 0.8) << "frame " << f;
+      EXPECT_GT(eval::BoxIou(box, truth), 0.8) << "frame " << f;
     } else {
       // The visible half is half as tall; the box stays the band's.
       EXPECT_NEAR(box[2], truth[2], 0.1 * truth[2]) << "frame " << f;

@@ -1,4 +1,5 @@
 #include "simtree/tracking/detail/band_shape.h"
+#include "simtree/eval/tracking_metrics.h"
 
 #include <cmath>
 
@@ -8,13 +9,6 @@
 
 namespace simtree::tracking::detail {
 namespace {
-
-double Iou(const std::array<double, 4>& a, const std::array<double, 4>& b) {
-  const double w = std::min(a[0] + a[2], b[0] + b[2]) - std::max(a[0], b[0]);
-  const double h = std::min(a[1] + a[3], b[1] + b[3]) - std::max(a[1], b[1]);
-  if (w <= 0 || h <= 0) return 0.0;
-  return w * h / (a[2] * a[3] + b[2] * b[3] - w * h);
-}
 
 // A band seen from the side: a rectangle (half-length l px along `axis`, half-width r px),
 // rasterised by each pixel's covered share (16 x 16 samples), pixels and weights as a blob's.
@@ -53,7 +47,7 @@ TEST(BandShape, AnUprightBandIsItsRectangle) {
   EXPECT_NEAR(s.radius, 3.0, 0.1);
   EXPECT_NEAR(s.half_length, 6.0, 0.1);
   EXPECT_LT((s.center - centre).norm(), 0.05);
-  EXPECT_GT(Iou(s.Box(), {centre.x() - 3, centre.y() - 6, 6, 12}), 0.95);
+  EXPECT_GT(eval::BoxIou(s.Box(), {centre.x() - 3, centre.y() - 6, 6, 12}), 0.95);
 }
 
 TEST(BandShape, ATiltedBandsBoxBoundsItsRotatedRectangle) {
@@ -65,7 +59,7 @@ TEST(BandShape, ATiltedBandsBoxBoundsItsRotatedRectangle) {
   EXPECT_NEAR(s.radius, r, 0.1);
   EXPECT_NEAR(s.half_length, l, 0.1);
   const double hx = l * axis.x() + r * axis.y(), hy = l * axis.y() + r * axis.x();
-  EXPECT_GT(Iou(s.Box(), {centre.x() - hx, centre.y() - hy, 2 * hx, 2 * hy}), 0.95);
+  EXPECT_GT(eval::BoxIou(s.Box(), {centre.x() - hx, centre.y() - hy, 2 * hx, 2 * hy}), 0.95);
 }
 
 TEST(BandShape, BlurIsTakenOffTheExtent) {

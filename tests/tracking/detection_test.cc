@@ -1,4 +1,5 @@
 #include "simtree/tracking/detail/detection.h"
+#include "simtree/eval/tracking_metrics.h"
 
 #include <gtest/gtest.h>
 
@@ -6,13 +7,6 @@
 
 namespace simtree::tracking::detail {
 namespace {
-
-double Iou(const std::array<double, 4>& a, const std::array<double, 4>& b) {
-  const double w = std::min(a[0] + a[2], b[0] + b[2]) - std::max(a[0], b[0]);
-  const double h = std::min(a[1] + a[3], b[1] + b[3]) - std::max(a[1], b[1]);
-  if (w <= 0 || h <= 0) return 0.0;
-  return w * h / (a[2] * a[3] + b[2] * b[3] - w * h);
-}
 
 std::vector<Detection> DetectAll(const RgbdImage& image) {
   BlobDetector detector(ColorModelFromName("red"), BlobDetectorOptions{});
@@ -33,7 +27,7 @@ TEST(Detection, SubPixelCentreBoxAndAxisDepthOfADrawnBand) {
   const Detection& d = found[0];
   const Eigen::Vector2d truth = s.intrinsics.Project(p);
   EXPECT_LT((d.center - truth).norm(), 0.15) << d.center.transpose() << " vs " << truth.transpose();
-  EXPECT_GT(Iou(d.Box(), test::DrawnBox(s, p)), 0.75);
+  EXPECT_GT(eval::BoxIou(d.Box(), test::DrawnBox(s, p)), 0.75);
   ASSERT_TRUE(d.has_depth);
   EXPECT_LT((d.position - p).norm(), 0.004);
 }

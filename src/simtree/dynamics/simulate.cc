@@ -14,7 +14,7 @@
 namespace simtree::dynamics {
 namespace {
 
-void Check(bool ok, const std::string& field, const std::string& message) {
+void CheckSimulation(bool ok, const std::string& field, const std::string& message) {
   CheckOption(ok, "simulation options", field, message);
 }
 
@@ -56,14 +56,14 @@ void PullSchedule::Validate() const {
 }
 
 void SimulationOptions::Validate() const {
-  Check(std::isfinite(duration_s) && duration_s >= 0.0, "duration_s",
-        fmt::format("expected a duration >= 0 s, got {}", duration_s));
-  Check(std::isfinite(fps) && fps > 0.0 && fps <= 10000.0, "fps",
-        fmt::format("expected a frame rate in (0, 10000] per second, got {}", fps));
-  Check(std::isfinite(max_time_step_s) && max_time_step_s >= 0.0, "max_time_step_s",
-        fmt::format("expected a step >= 0 s (0 = automatic), got {}", max_time_step_s));
-  Check(duration_s * fps <= 1e7, "duration_s",
-        fmt::format("expected at most 10 million frames, got {:.0f}", duration_s * fps));
+  CheckSimulation(std::isfinite(duration_s) && duration_s >= 0.0, "duration_s",
+                  fmt::format("expected a duration >= 0 s, got {}", duration_s));
+  CheckSimulation(std::isfinite(fps) && fps > 0.0 && fps <= 10000.0, "fps",
+                  fmt::format("expected a frame rate in (0, 10000] per second, got {}", fps));
+  CheckSimulation(std::isfinite(max_time_step_s) && max_time_step_s >= 0.0, "max_time_step_s",
+                  fmt::format("expected a step >= 0 s (0 = automatic), got {}", max_time_step_s));
+  CheckSimulation(duration_s * fps <= 1e7, "duration_s",
+                  fmt::format("expected at most 10 million frames, got {:.0f}", duration_s * fps));
   if (pull) pull->Validate();
   dynamics.Validate();
 }

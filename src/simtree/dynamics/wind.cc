@@ -15,7 +15,7 @@
 namespace simtree::dynamics {
 namespace {
 
-void Check(bool ok, const std::string& field, const std::string& message) {
+void CheckWind(bool ok, const std::string& field, const std::string& message) {
   CheckOption(ok, "wind options", field, message);
 }
 
@@ -36,30 +36,32 @@ Eigen::Vector3d RandomUnit(std::mt19937_64& rng) {
 }  // namespace
 
 void WindOptions::Validate() const {
-  Check(std::isfinite(mean_speed_mps) && mean_speed_mps >= 0.0, "mean_speed_mps",
-        fmt::format("expected a speed >= 0 m/s, got {}", mean_speed_mps));
-  Check(direction.allFinite(), "direction", "expected a finite direction");
-  Check(std::isfinite(turbulence_intensity) && turbulence_intensity >= 0.0, "turbulence_intensity",
-        fmt::format("expected an intensity >= 0, got {}", turbulence_intensity));
-  Check(std::isfinite(length_scale_m) && length_scale_m >= 0.0, "length_scale_m",
-        fmt::format("expected a length >= 0 m (0 = automatic), got {}", length_scale_m));
-  Check(std::isfinite(shear_exponent) && shear_exponent >= 0.0 && shear_exponent <= 1.0,
-        "shear_exponent", fmt::format("expected an exponent in [0, 1], got {}", shear_exponent));
-  Check(modes >= 1 && modes <= 4096, "modes",
-        fmt::format("expected 1 to 4096 Fourier modes, got {}", modes));
-  Check(grid_cells >= 1 && grid_cells <= 256, "grid_cells",
-        fmt::format("expected 1 to 256 lattice cells, got {}", grid_cells));
-  Check(std::isfinite(air_density_kg_m3) && air_density_kg_m3 >= 0.0, "air_density_kg_m3",
-        fmt::format("expected a density >= 0, got {}", air_density_kg_m3));
-  Check(std::isfinite(drag_coefficient) && drag_coefficient >= 0.0, "drag_coefficient",
-        fmt::format("expected a coefficient >= 0, got {}", drag_coefficient));
+  CheckWind(std::isfinite(mean_speed_mps) && mean_speed_mps >= 0.0, "mean_speed_mps",
+            fmt::format("expected a speed >= 0 m/s, got {}", mean_speed_mps));
+  CheckWind(direction.allFinite(), "direction", "expected a finite direction");
+  CheckWind(std::isfinite(turbulence_intensity) && turbulence_intensity >= 0.0,
+            "turbulence_intensity",
+            fmt::format("expected an intensity >= 0, got {}", turbulence_intensity));
+  CheckWind(std::isfinite(length_scale_m) && length_scale_m >= 0.0, "length_scale_m",
+            fmt::format("expected a length >= 0 m (0 = automatic), got {}", length_scale_m));
+  CheckWind(std::isfinite(shear_exponent) && shear_exponent >= 0.0 && shear_exponent <= 1.0,
+            "shear_exponent",
+            fmt::format("expected an exponent in [0, 1], got {}", shear_exponent));
+  CheckWind(modes >= 1 && modes <= 4096, "modes",
+            fmt::format("expected 1 to 4096 Fourier modes, got {}", modes));
+  CheckWind(grid_cells >= 1 && grid_cells <= 256, "grid_cells",
+            fmt::format("expected 1 to 256 lattice cells, got {}", grid_cells));
+  CheckWind(std::isfinite(air_density_kg_m3) && air_density_kg_m3 >= 0.0, "air_density_kg_m3",
+            fmt::format("expected a density >= 0, got {}", air_density_kg_m3));
+  CheckWind(std::isfinite(drag_coefficient) && drag_coefficient >= 0.0, "drag_coefficient",
+            fmt::format("expected a coefficient >= 0, got {}", drag_coefficient));
 }
 
 WindField::WindField(const WindOptions& options, const Eigen::Vector3d& min_corner,
                      const Eigen::Vector3d& max_corner)
     : options_(options) {
   options.Validate();
-  Check(
+  CheckWind(
       min_corner.allFinite() && max_corner.allFinite() && (max_corner - min_corner).minCoeff() >= 0,
       "bounds", "expected finite bounds of the tree");
   const Eigen::Vector3d horizontal(options.direction.x(), options.direction.y(), 0.0);

@@ -16,8 +16,8 @@ using detail::kHingeLinkMass;
 using detail::Num;
 using detail::Vec;
 
-void Inertial(std::ostringstream& out, const Eigen::Vector3d& com, double mass,
-              const Eigen::Matrix3d& i) {
+void SdfInertial(std::ostringstream& out, const Eigen::Vector3d& com, double mass,
+                 const Eigen::Matrix3d& i) {
   out << fmt::format(
       "      <inertial><pose>{} 0 0 0</pose><mass>{}</mass><inertia><ixx>{}</ixx><ixy>{}</ixy>"
       "<ixz>{}</ixz><iyy>{}</iyy><iyz>{}</iyz><izz>{}</izz></inertia></inertial>\n",
@@ -42,10 +42,10 @@ std::string WriteSdf(const RobotModel& model) {
       out << fmt::format("    <link name=\"{}\">\n      <pose>{} 0 0 0</pose>\n", child,
                          Vec(s.base));
       if (!last) {
-        Inertial(out, Eigen::Vector3d::Zero(), kHingeLinkMass,
-                 kHingeLinkInertia * Eigen::Matrix3d::Identity());
+        SdfInertial(out, Eigen::Vector3d::Zero(), kHingeLinkMass,
+                    kHingeLinkInertia * Eigen::Matrix3d::Identity());
       } else {
-        Inertial(out, s.center_of_mass - s.base, s.mass_kg, s.inertia);
+        SdfInertial(out, s.center_of_mass - s.base, s.mass_kg, s.inertia);
         const Eigen::Vector3d chord = s.tip - s.base;
         const std::string shape = fmt::format(
             "<pose>{} {}</pose><geometry><capsule><radius>{}</radius><length>{}</length>"

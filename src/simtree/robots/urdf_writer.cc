@@ -16,8 +16,8 @@ using detail::kHingeLinkMass;
 using detail::Num;
 using detail::Vec;
 
-void Inertial(std::ostringstream& out, const Eigen::Vector3d& com, double mass,
-              const Eigen::Matrix3d& i) {
+void UrdfInertial(std::ostringstream& out, const Eigen::Vector3d& com, double mass,
+                  const Eigen::Matrix3d& i) {
   out << fmt::format(
       "    <inertial><origin xyz=\"{}\"/><mass value=\"{}\"/>"
       "<inertia ixx=\"{}\" ixy=\"{}\" ixz=\"{}\" iyy=\"{}\" iyz=\"{}\" izz=\"{}\"/></inertial>\n",
@@ -27,7 +27,7 @@ void Inertial(std::ostringstream& out, const Eigen::Vector3d& com, double mass,
 
 void SegmentLink(std::ostringstream& out, const Segment& s) {
   out << fmt::format("  <link name=\"{}\">\n", s.name);
-  Inertial(out, s.center_of_mass - s.base, s.mass_kg, s.inertia);
+  UrdfInertial(out, s.center_of_mass - s.base, s.mass_kg, s.inertia);
   const Eigen::Vector3d chord = s.tip - s.base;
   const std::string origin = fmt::format("<origin xyz=\"{}\" rpy=\"{}\"/>", Vec(0.5 * chord),
                                          Vec(detail::RpyFromZTo(chord)));
@@ -63,8 +63,8 @@ std::string WriteUrdf(const RobotModel& model) {
       const std::string child = last ? s.name : hinge.name + "_link";
       if (!last) {
         out << fmt::format("  <link name=\"{}\">\n", child);
-        Inertial(out, Eigen::Vector3d::Zero(), kHingeLinkMass,
-                 kHingeLinkInertia * Eigen::Matrix3d::Identity());
+        UrdfInertial(out, Eigen::Vector3d::Zero(), kHingeLinkMass,
+                     kHingeLinkInertia * Eigen::Matrix3d::Identity());
         out << "  </link>\n";
       } else {
         SegmentLink(out, s);
