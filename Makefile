@@ -12,9 +12,9 @@ SIMTREE    := $(BUILD)/bin/simtree
 # Warnings are errors in CI (CI=true), warnings elsewhere.
 WERROR     := $(if $(filter true,$(CI)),ON,OFF)
 # Unity builds: CMake compiles a target's sources eight to a file, so Eigen, Open3D and the
-# standard headers are parsed and their templates instantiated once per eight sources; a fresh
-# build takes about half the time. File-local names must differ across a target's sources
-# (UNITY=OFF builds each source alone, as the odr-check does).
+# standard headers are parsed and their templates instantiated once per eight sources instead of
+# once per source. File-local names must differ across a target's sources (UNITY=OFF builds each
+# source alone, as the odr-check does).
 UNITY      ?= ON
 CMAKE_ARGS := -DSIMTREE_SHARED_DIR=$(SHARED) -DSIMTREE_WERROR=$(WERROR) -DCMAKE_UNITY_BUILD=$(UNITY)
 
@@ -48,12 +48,14 @@ test: build
 test-fast: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) -L fast
 
-# The fast suite under AddressSanitizer + UndefinedBehaviorSanitizer.
+# The fast suite under AddressSanitizer + UndefinedBehaviorSanitizer; the slow suites are not built.
 # -O1 -g1: sanitizer reports keep function names and lines, and the heavy template files build in
-# well under half the time of -O2 -g (core/tree_json.cc: 47 s -> 18 s); CI builds everything twice.
+# well under half the time of -O2 -g (core/tree_json.cc: 47 s -> 18 s); CI builds the project
+# three times (Release, sanitizers, fuzzers).
 asan: deps
 	cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DSIMTREE_SANITIZE=ON $(CMAKE_ARGS)
+	  -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DSIMTREE_SANITIZE=ON \
+	  -DSIMTREE_SLOW_TESTS=OFF $(CMAKE_ARGS)
 	cmake --build $(ASAN_BUILD) -j $(JOBS)
 	ASAN_OPTIONS=detect_leaks=1:detect_container_overflow=0:abort_on_error=1 \
 	UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \

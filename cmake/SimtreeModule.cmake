@@ -37,13 +37,19 @@ function(simtree_add_module name)
   set_target_properties(simtree_${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
 endfunction()
 
-# simtree_add_test_suite(<name> SOURCES ... DEPS ... [LABELS fast|slow ...] [TIMEOUT seconds])
+# simtree_add_test_suite(<name> SOURCES ... DEPS ... [LABELS fast|slow ...] [TIMEOUT seconds]
+#                        [USES_CLI])
 # One GoogleTest executable per suite; each test case becomes a CTest test carrying LABELS.
 # Tests find the shared data through SIMTREE_SHARED_DATA_DIR and write under SIMTREE_TEST_TMP_DIR.
+# USES_CLI: the tests run the simtree CLI, which is built first. A slow suite is not built at all
+# with SIMTREE_SLOW_TESTS off (the sanitizer build, which runs the fast suite only).
 function(simtree_add_test_suite name)
-  cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "USES_CLI" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
   if(NOT ARG_LABELS)
     set(ARG_LABELS fast)
+  endif()
+  if("slow" IN_LIST ARG_LABELS AND NOT SIMTREE_SLOW_TESTS)
+    return()
   endif()
   if(NOT ARG_TIMEOUT)
     set(ARG_TIMEOUT 300)
@@ -64,6 +70,9 @@ function(simtree_add_test_suite name)
     DISCOVERY_MODE PRE_TEST
     WORKING_DIRECTORY ${CMAKE_BINARY_DIR}
     PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT})
+  if(ARG_USES_CLI)
+    add_dependencies(simtree_${name}_tests simtree)
+  endif()
 endfunction()
 
 # simtree_add_benchmark(<name> SOURCES ... DEPS ...): a Google Benchmark executable in bin/.
