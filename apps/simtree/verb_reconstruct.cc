@@ -5,6 +5,7 @@
 
 #include "cli_common.h"
 #include "simtree/core/atomic_file.h"
+#include "simtree/core/atomic_file_set.h"
 #include "simtree/core/tree_file.h"
 #include "simtree/core/tube_mesh.h"
 #include "simtree/eval/reconstruction_metrics.h"
@@ -111,10 +112,18 @@ std::vector<std::string> LogSummary(const std::string& source,
   return caption;
 }
 
+// The tree, mesh and picture appear together or not at all: a failure (or Ctrl-C) while any of
+// them is made leaves every target as it was.
 void RunReconstruct(const ReconstructArgs& args) {
   RefuseToOverwriteInputs(args.output, {args.input});
   if (!args.mesh.empty()) RefuseToOverwriteInputs(args.mesh, {args.input});
   if (!args.picture.empty()) RefuseToOverwriteInputs(args.picture, {args.input});
+  CheckTreeFilePath(args.output);
+  if (!args.mesh.empty()) CheckMeshPath(args.mesh);
+  AtomicFileSet outputs;
+  const fs::path tree_file = outputs.Stage(args.output);
+  const fs::path mesh_file = args.mesh.empty() ? fs::path() : outputs.Stage(args.mesh);
+  const fs::path picture_file = args.picture.empty() ? fs::path() : outputs.Stage(args.picture);
   PointCloudReadReport read;
   const open3d::geometry::PointCloud cloud = ReadPointCloud(args.input, &read);
   const std::string source = fs::path(args.input).filename().string();
@@ -122,7 +131,7 @@ void RunReconstruct(const ReconstructArgs& args) {
       reconstruction::ReconstructTree(cloud.points_, args.input, args.options);
   Tree tree = result.tree;
   tree.metadata.source = "reconstructed from " + source;
-  WriteTreeFile(tree, args.output);
+  WriteTreeFile(tree, tree_file);
   std::vector<std::string> caption = LogSummary(source, result, tree);
   if (!args.no_fit_score) {
     const eval::CloudFitScores fit = eval::ScoreAgainstCloud(tree, cloud.points_);
@@ -130,21 +139,23 @@ void RunReconstruct(const ReconstructArgs& args) {
     caption.push_back(fmt::format("points to model surface: mean {:.1f} mm, {:.1f}% within 2 cm",
                                   1e3 * fit.mean_distance_m, 100 * fit.share_within));
   }
-  spdlog::info("wrote {}", args.output);
+  TriangleMesh mesh;
   if (!args.mesh.empty()) {
-    const TriangleMesh mesh = BuildTubeMesh(tree);
+    mesh = BuildTubeMesh(tree);
     MeshWriteOptions write;
     write.colour_by_level_of = &tree;
-    WriteMesh(mesh, args.mesh, write);
-    spdlog::info("wrote {} ({} triangles)", args.mesh, mesh.triangle_count());
+    WriteMesh(mesh, mesh_file, write);
   }
   if (!args.picture.empty()) {
     reconstruction::ReconstructionPlotOptions plot;
     plot.title = "simtree reconstruct " + source;
     plot.caption = caption;
-    reconstruction::WriteReconstructionPlot(tree, cloud.points_, args.picture, plot);
-    spdlog::info("wrote {}", args.picture);
+    reconstruction::WriteReconstructionPlot(tree, cloud.points_, picture_file, plot);
   }
+  outputs.Commit();
+  spdlog::info("wrote {}", args.output);
+  if (!args.mesh.empty()) spdlog::info("wrote {} ({} triangles)", args.mesh, mesh.triangle_count());
+  if (!args.picture.empty()) spdlog::info("wrote {}", args.picture);
 }
 
 }  // namespace

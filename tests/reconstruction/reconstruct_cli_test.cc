@@ -55,5 +55,37 @@ TEST(ReconstructCli, BadInputsSayWhatIsWrongAndWriteNothing) {
   EXPECT_TRUE(std::filesystem::exists(dir / "mm.xyz"));
 }
 
+// Outputs that cannot be written (a mesh extension it does not take, a folder where the picture
+// goes) are refused by their names before the reconstruction, and leave the older tree as it was
+// and no temporary behind (AtomicFileSet's tests: a failure while writing commits none).
+TEST(ReconstructCli, OutputsThatCannotBeWrittenAreRefusedFirst) {
+  const auto dir = test::TempDir();
+  const std::string scan = test::SharedData("real-scans/rtwig_cloud.xyz").string();
+  const auto out = dir / "t.json";
+  test::WriteText(out, "older");
+  auto r = test::RunCli("reconstruct " + scan + " --out " + out.string() + " --mesh " +
+                        (dir / "t.stl").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("t.stl: expected a mesh file ending in .ply or .obj"));
+  EXPECT_THAT(r.output, ::testing::Not(HasSubstr("trunk:")));
+  EXPECT_EQ(test::ReadText(out), "older");
+  r = test::RunCli("reconstruct " + scan + " --out " + (dir / "t.yaml").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.output, HasSubstr("t.yaml: expected a tree file ending in .json"));
+  EXPECT_THAT(r.output, ::testing::Not(HasSubstr("trunk:")));
+  std::filesystem::create_directories(dir / "picture.png");
+  r = test::RunCli("reconstruct " + scan + " --out " + out.string() + " --picture " +
+                   (dir / "picture.png").string());
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_THAT(r.output, HasSubstr("picture.png: is a folder"));
+  EXPECT_THAT(r.output, ::testing::Not(HasSubstr("trunk:")));
+  EXPECT_EQ(test::ReadText(out), "older");
+  std::vector<std::string> left;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    left.push_back(entry.path().filename().string());
+  }
+  EXPECT_THAT(left, ::testing::UnorderedElementsAre("t.json", "picture.png"));
+}
+
 }  // namespace
 }  // namespace simtree::reconstruction

@@ -37,6 +37,11 @@ Tree ReadTreeFile(const std::filesystem::path& path, const TreeFileOptions& opti
   return tree;
 }
 
+void CheckTreeFilePath(const std::filesystem::path& path) {
+  const std::string ext = Extension(path);
+  if (ext != ".json" && ext != ".txt") UnknownExtension(path);
+}
+
 void WriteTreeFile(const Tree& tree, const std::filesystem::path& path,
                    const TreeFileOptions& options) {
   const std::string ext = Extension(path);

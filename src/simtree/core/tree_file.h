@@ -17,6 +17,8 @@ struct TreeFileOptions {
 
 Tree ReadTreeFile(const std::filesystem::path& path, const TreeFileOptions& options = {});
 // .json or .txt (the latter writes `legacy_parameters` too when set and the tree has materials).
+// Throws InputError naming `path` for another extension (CheckTreeFilePath, before any work).
+void CheckTreeFilePath(const std::filesystem::path& path);
 void WriteTreeFile(const Tree& tree, const std::filesystem::path& path,
                    const TreeFileOptions& options = {});
 

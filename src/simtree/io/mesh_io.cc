@@ -34,16 +34,21 @@ Eigen::Vector3i LevelColour(int level) {
   return kColours[std::clamp(level, 0, kCount - 1)];
 }
 
-void WriteMesh(const TriangleMesh& mesh, const std::filesystem::path& path,
-               const MeshWriteOptions& options) {
+void CheckMeshPath(const std::filesystem::path& path) {
   const std::string ext = Lower(path.extension().string());
-  if (ext == ".ply") {
-    WritePlyMesh(mesh, path, options);
-  } else if (ext == ".obj") {
-    WriteObjMesh(mesh, path);
-  } else {
+  if (ext != ".ply" && ext != ".obj") {
     throw InputError(path.string(), "",
                      fmt::format("expected a mesh file ending in .ply or .obj, got \"{}\"", ext));
+  }
+}
+
+void WriteMesh(const TriangleMesh& mesh, const std::filesystem::path& path,
+               const MeshWriteOptions& options) {
+  CheckMeshPath(path);
+  if (Lower(path.extension().string()) == ".ply") {
+    WritePlyMesh(mesh, path, options);
+  } else {
+    WriteObjMesh(mesh, path);
   }
 }
 

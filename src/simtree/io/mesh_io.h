@@ -16,6 +16,8 @@ struct MeshWriteOptions {
 };
 
 // Writes by extension: .ply or .obj (InputError otherwise). Atomic.
+// Throws InputError naming `path` for another extension (CheckMeshPath, before any work).
+void CheckMeshPath(const std::filesystem::path& path);
 void WriteMesh(const TriangleMesh& mesh, const std::filesystem::path& path,
                const MeshWriteOptions& options = {});
 void WritePlyMesh(const TriangleMesh& mesh, const std::filesystem::path& path,
