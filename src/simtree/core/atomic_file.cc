@@ -1,32 +1,18 @@
 #include "simtree/core/atomic_file.h"
 
-#include <unistd.h>
-
-#include <atomic>
 #include <sstream>
 
 #include <fmt/format.h>
 
+#include "simtree/core/detail/sibling_path.h"
 #include "simtree/core/error.h"
 
 namespace fs = std::filesystem;
 
 namespace simtree {
-namespace {
 
-// A name beside `target` no other writer (thread or process) uses at the same time.
-fs::path SiblingName(const fs::path& target, const char* tag) {
-  static std::atomic<int> counter{0};
-  // Keeps the extension so libraries that pick a format by extension (Open3D) can write it.
-  return target.parent_path() / fmt::format(".{}.{}-{}-{}{}", target.stem().string(), tag,
-                                            ::getpid(), counter++, target.extension().string());
-}
-
-fs::path ParentOrCurrent(const fs::path& p) {
-  return p.parent_path().empty() ? fs::path(".") : p.parent_path();
-}
-
-}  // namespace
+using detail::ParentOrCurrent;
+using detail::SiblingName;
 
 AtomicFile::AtomicFile(fs::path target, bool binary) : target_(std::move(target)) {
   const fs::path folder = ParentOrCurrent(target_);

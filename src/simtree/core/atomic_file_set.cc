@@ -1,11 +1,8 @@
 #include "simtree/core/atomic_file_set.h"
 
-#include <unistd.h>
-
-#include <atomic>
-
 #include <fmt/format.h>
 
+#include "simtree/core/detail/sibling_path.h"
 #include "simtree/core/error.h"
 
 namespace fs = std::filesystem;
@@ -23,13 +20,10 @@ fs::path AtomicFileSet::Stage(const fs::path& target) {
   if (fs::is_directory(target, ec)) {
     throw IoError(fmt::format("{}: is a folder; expected a file to write", target.string()));
   }
-  const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  const fs::path folder = detail::ParentOrCurrent(target);
   fs::create_directories(folder, ec);
   if (ec) throw IoError(fmt::format("{}: cannot create folder: {}", folder.string(), ec.message()));
-  static std::atomic<int> counter{0};
-  const fs::path temporary =
-      folder / fmt::format(".{}.staged-{}-{}{}", target.stem().string(), ::getpid(), counter++,
-                           target.extension().string());
+  const fs::path temporary = detail::SiblingName(target, "staged");
   entries_.push_back({target, temporary});
   return temporary;
 }
