@@ -7,7 +7,7 @@
 #include "simtree/core/error.h"
 #include "simtree/core/option_checks.h"
 #include "simtree/io/capture.h"
-#include "simtree/tracking/detail/color_model.h"
+#include "simtree/tracking/find_tapes.h"
 
 namespace fs = std::filesystem;
 
@@ -52,7 +52,9 @@ void CheckThresholds::Validate() const {
 void CaptureCheckOptions::Validate() const {
   CheckNested("thresholds", thresholds);
   // The tracker's own check of the name: refused before any work.
-  tracking::detail::ColorModelFromName(tape_color);
+  tracking::FindTapesOptions tapes;
+  tapes.color = tape_color;
+  tapes.Validate();
 }
 
 Status CaptureCheckResult::Worst() const {

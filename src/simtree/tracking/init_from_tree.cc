@@ -16,12 +16,11 @@
 #include "simtree/tracking/detail/detection.h"
 #include "simtree/tracking/detail/projection_match.h"
 #include "simtree/tracking/detail/pull_input.h"
+#include "simtree/tracking/track.h"
 
 namespace simtree::tracking {
 namespace {
 
-// Pixel sizes are given for synth's 640 x 576 depth camera (as TrackOptions' are).
-constexpr double kReferenceFocalPx = 434.19751177064387;
 // Nearer than this a marker's point is taken as behind the camera (no sensible projection).
 constexpr double kMinDepthM = 0.05;
 

@@ -44,6 +44,11 @@ enum class MotionModelKind {
 };
 const char* ToString(MotionModelKind kind);
 
+// The focal length (px) the tracker's pixel options are given for: synth's 640 x 576 depth camera
+// (75 degrees wide, 320 / tan 37.5 deg). A marker's size and motion in pixels grow with the focal
+// length, not the image width, so the options scale with fx / kReferenceFocalPx.
+inline constexpr double kReferenceFocalPx = 434.19751177064387;
+
 struct TrackOptions {
   // The tape colour: "auto" (red, its hue and saturation fitted to the init pixels), "red",
   // "green", "blue", "yellow", "orange" or "#rrggbb" (a hue fitted around that colour).

@@ -6,6 +6,8 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "simtree/tracking/find_tapes.h"
+
 namespace simtree::capture_check::detail {
 
 namespace {
@@ -13,9 +15,6 @@ namespace {
 constexpr double kDepthAgreementM = 0.15;  // a pixel this near a tree point's depth is the tree's
 constexpr int kHoleSpanPx = 3;             // a hole is bounded by tree pixels this close
 constexpr int kClippedLevel = 250;
-// The tape colour model's least brightness (tracking/detail/color_model.h): darker pixels have
-// no hue the tracker can read.
-constexpr int kDarkLevel = 28;
 
 // Marks the pixels of the tree: around each point's projection, those whose depth agrees.
 std::vector<uint8_t> TreeMask(const RgbdImage& image, const open3d::geometry::PointCloud& tree,
@@ -71,6 +70,8 @@ int MarkHoles(const DepthImage& depth, std::vector<uint8_t>* mask) {
 }
 
 void MeasureExposure(const RgbImage& color, const std::vector<uint8_t>& mask, FrameQuality* q) {
+  // Darker pixels have no hue the tracker can read.
+  const double dark_level = tracking::TapeMinBrightness();
   int n = 0, bright = 0, dark = 0;
   for (size_t i = 0; i < mask.size(); ++i) {
     if (mask[i] == 0) continue;
@@ -78,7 +79,7 @@ void MeasureExposure(const RgbImage& color, const std::vector<uint8_t>& mask, Fr
     const int hi = std::max({c[0], c[1], c[2]});
     ++n;
     bright += hi >= kClippedLevel;
-    dark += hi < kDarkLevel;
+    dark += hi < dark_level;
   }
   q->bright_share = n > 0 ? static_cast<double>(bright) / n : 0;
   q->dark_share = n > 0 ? static_cast<double>(dark) / n : 0;

@@ -1,6 +1,6 @@
 #pragma once
-// The tape markers in one pull frame, found as the tracker finds them (tracking's colour model,
-// blob detector and band measurement): how many show and how many pixels wide they are.
+// The tape markers in one pull frame, found as the tracker finds them (tracking/find_tapes.h):
+// how many show and how many pixels wide they are.
 
 #include <string>
 #include <vector>

@@ -63,11 +63,8 @@ class MarkerTracker {
                               std::vector<int>* assignment) const;
   MarkerFrameResult Measured(Marker& marker, const Detection& det);
   MarkerFrameResult Unmeasured(Marker& marker);
-  // The pixel thresholds are set for synth's 640 x 576 depth camera (75 degrees wide, focal
-  // length 320 / tan 37.5 deg = 434.2 px); a marker's motion and size in pixels grow with the
-  // focal length, not the image width (a 1280 x 720 colour camera is 90 degrees wide).
+  // The pixel thresholds are set at kReferenceFocalPx (track.h).
   double Scale() const { return intrinsics_.fx / kReferenceFocalPx; }
-  static constexpr double kReferenceFocalPx = 434.19751177064387;
 
   TrackOptions options_;
   MotionModelParams motion_params_;
