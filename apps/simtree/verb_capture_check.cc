@@ -45,7 +45,7 @@ void RegisterCaptureCheck(CLI::App& app) {
       "capture-check",
       "What to fix in a capture before the long run (a capture folder, or recordings as "
       "capture-from takes them): scan views (depth on the tree, "
-      "distance, sharpness, exposure, coverage around the tree by a quick registration), the pull "
+      "distance, blur, exposure, coverage around the tree by a quick registration), the pull "
       "stream (frame rate, length, dropped frames) and its first frame (the same, and the tape "
       "markers: found, how many pixels wide). Each check: value, limits, ok/warn/fail and a fix "
       "(docs/capturing.md). Exits 1 when a check fails, 0 otherwise");

@@ -24,7 +24,7 @@ TEST(CaptureCheck, ASynthCaptureHasNoFailure) {
   for (const std::string view : {"view_00", "view_01", "view_02", "view_03"}) {
     EXPECT_EQ(Find(r, "depth on the tree", view).status, Status::kOk) << FormatTable(r);
     EXPECT_EQ(Find(r, "exposure", view).status, Status::kOk);
-    EXPECT_EQ(Find(r, "sharpness", view).status, Status::kOk);
+    EXPECT_EQ(Find(r, "blur", view).status, Status::kOk);
   }
   const Check tape = Find(r, "tape markers", "pull frame 0");
   EXPECT_GE(tape.value, 8) << tape.message;
@@ -85,6 +85,40 @@ TEST(CaptureCheck, OverexposedColourFails) {
   EXPECT_NE(e.message.find("clipped white"), std::string::npos) << e.message;
   EXPECT_NE(e.message.find("lower the exposure"), std::string::npos) << e.message;
   EXPECT_EQ(Find(r, "exposure", "view_00").status, Status::kOk);
+}
+
+// Each channel averaged over a box of (2 radius + 1) px along rows, then along columns.
+RgbImage BoxBlurred(const RgbImage& image, int radius) {
+  RgbImage out = image;
+  for (const bool rows : {true, false}) {
+    const RgbImage in = out;
+    for (int y = 0; y < in.height; ++y) {
+      for (int x = 0; x < in.width; ++x) {
+        for (int ch = 0; ch < 3; ++ch) {
+          int sum = 0, n = 0;
+          for (int d = -radius; d <= radius; ++d) {
+            const int xx = rows ? x + d : x, yy = rows ? y : y + d;
+            if (xx < 0 || yy < 0 || xx >= in.width || yy >= in.height) continue;
+            sum += in.at(xx, yy, ch);
+            ++n;
+          }
+          out.at(x, y, ch) = static_cast<uint8_t>((sum + n / 2) / n);
+        }
+      }
+    }
+  }
+  return out;
+}
+
+TEST(CaptureCheck, ABlurredPullFrameWarns) {
+  const fs::path dir = CopyOfCapture();
+  const fs::path color = dir / "pull" / "color" / "000000.png";
+  WritePng(BoxBlurred(ReadColorImage(color), 2), color);
+  const CaptureCheckResult r = CheckCapture(dir, NoRegistration());
+  const Check blur = Find(r, "blur", "pull frame 0");
+  EXPECT_EQ(blur.status, Status::kWarn) << blur.message;
+  EXPECT_NE(blur.message.find("hold the camera still"), std::string::npos) << blur.message;
+  EXPECT_EQ(Find(r, "blur", "view_00").status, Status::kOk);
 }
 
 TEST(CaptureCheck, AMissingViewWarns) {

@@ -42,7 +42,7 @@ void CheckThresholds::Validate() const {
   CheckOrdered("warn_distance_m", warn_distance_m, "max_distance_m", max_distance_m);
   CheckNonNegative("fail_tape_px", fail_tape_px);
   CheckOrdered("fail_tape_px", fail_tape_px, "warn_tape_px", warn_tape_px);
-  CheckNonNegative("warn_sharpness", warn_sharpness);
+  CheckShare("warn_blur", warn_blur);
   CheckShare("warn_clipped_share", warn_clipped_share);
   CheckShare("fail_clipped_share", fail_clipped_share);
   CheckOrdered("warn_clipped_share", warn_clipped_share, "fail_clipped_share", fail_clipped_share);

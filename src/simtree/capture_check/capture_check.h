@@ -2,10 +2,10 @@
 // `simtree capture-check`: what a user should fix in a capture before the long run. Each check
 // has a value, thresholds derived from what the stages need (docs/capturing.md says why) and an
 // outcome with a one-line fix:
-//   scan views      count, and per view: depth on the tree, distance, sharpness, exposure
+//   scan views      count, and per view: depth on the tree, distance, blur, exposure
 //   view coverage   the largest angle around the tree without a view (a quick registration)
 //   pull stream     frames, rate, length, dropped frames, and in its first frame: depth on the
-//                   tree, distance, tape markers found and their width in pixels, sharpness,
+//                   tree, distance, tape markers found and their width in pixels, blur,
 //                   exposure
 // "The tree" in a frame is what preprocessing keeps of it (ground and outliers removed, the
 // largest cluster), projected back into the image.
@@ -49,7 +49,10 @@ struct CheckThresholds {
   // any tape below fail: warn; median below fail: fail.
   double warn_tape_px = 3;
   double fail_tape_px = 1.5;
-  double warn_sharpness = 60;          // variance of the grey Laplacian on the tree: warn
+  // The blur effect on the tree (0 sharp, 1 blurred; detail/frame_quality.h): warn. Synth's
+  // frames read 0.44-0.50 sharp, the real Azure Kinect frame 0.60; above 0.7 thin tapes (3 px)
+  // lose half their samples or more (docs/capturing.md).
+  double warn_blur = 0.7;
   double warn_clipped_share = 0.05;    // over- or under-exposed share of the tree: warn
   double fail_clipped_share = 0.25;    // fail
   double warn_coverage_gap_deg = 120;  // a larger angle around the tree without a view: warn

@@ -67,9 +67,8 @@ void CheckFrame(const std::string& subject, const RgbdImage& image,
                        "drown the camera's infrared), wait for still air, move closer",
                        100));
   out->push_back(DistanceCheck(subject, q.distance_m, t));
-  out->push_back(Grade("sharpness", subject, q.sharpness, "",
-                       {Better::kHigher, t.warn_sharpness, t.warn_sharpness},
-                       fmt::format("variance of the Laplacian {:.0f} on the tree", q.sharpness),
+  out->push_back(Grade("blur", subject, q.blur, "", {Better::kLower, t.warn_blur, t.warn_blur},
+                       fmt::format("blur effect {:.2f} on the tree (0 sharp, 1 blurred)", q.blur),
                        "the colour is blurred: hold the camera still (a tripod), wait for the "
                        "wind to drop, check the focus"));
   out->push_back(ExposureCheck(subject, q, t));

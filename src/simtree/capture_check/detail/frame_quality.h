@@ -1,7 +1,7 @@
 #pragma once
 // What one RGB-D frame says about the tree in it: where the tree is (its preprocessed points
 // projected into the image), how much of it has depth, how far it is, how sharp and how well
-// exposed its colour is.
+// blurred and how well exposed its colour is.
 
 #include <cstdint>
 #include <vector>
@@ -17,7 +17,7 @@ struct FrameQuality {
   int hole_pixels = 0;      // pixels without depth inside it (between depth pixels of the tree)
   double depth_share = 0;   // tree_pixels / (tree_pixels + hole_pixels)
   double distance_m = 0;    // median depth of the tree's points
-  double sharpness = 0;     // variance of the grey Laplacian over the footprint
+  double blur = 0;          // BlurEffect over the footprint, 0 (sharp) to 1
   double bright_share = 0;  // footprint pixels with a channel at 250 or more (clipped)
   double dark_share = 0;    // footprint pixels whose brightest channel is below 28
 };
@@ -29,8 +29,11 @@ struct FrameQuality {
 FrameQuality MeasureFrame(const RgbdImage& image, const open3d::geometry::PointCloud& tree_camera,
                           double point_spacing_m);
 
-// Variance of the Laplacian of the grey image over the pixels of `mask` (non-zero), 0 when
-// empty: low when the colour is blurred (motion, focus).
-double Sharpness(const RgbImage& color, const std::vector<uint8_t>& mask);
+// How blurred the grey image is over `mask`, 0 (sharp) to 1, whatever the scene's contrast: the
+// share of its neighbour differences that a further blur (a 3 px box, along the row and along the
+// column) leaves in place, the larger of the two directions (the "blur effect" of Crete-Roffet et
+// al., 2007, at the scale of thin tapes). A sharp edge loses most of its step to the box; an edge
+// already blurred over the box's width keeps it. 0 when the mask holds no contrast.
+double BlurEffect(const RgbImage& color, const std::vector<uint8_t>& mask);
 
 }  // namespace simtree::capture_check::detail

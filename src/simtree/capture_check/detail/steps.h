@@ -10,7 +10,7 @@
 
 namespace simtree::capture_check::detail {
 
-// Depth on the tree, distance, sharpness and exposure of one frame (a scan view, a pull frame).
+// Depth on the tree, distance, blur and exposure of one frame (a scan view, a pull frame).
 void CheckFrame(const std::string& subject, const RgbdImage& image,
                 const preprocessing::PreprocessedView& view, const CheckThresholds& t,
                 std::vector<Check>* out);
