@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <set>
 
@@ -16,6 +17,24 @@
 namespace simtree::registration {
 namespace {
 
+// Whether `result` (target_from_source of the pair source -> target) agrees with `chain` (the
+// poses of the views the trusted pairs reach from `target`) within the wider tolerance of the
+// unoptimised chain (MultiViewOptions::chained_decline_factor); "" when it does not or the chain
+// does not reach the source, else the reason to decline.
+std::string AgreesWithChain(const ChainedPoses& chain, const Eigen::Isometry3d& result,
+                            const RegistrationView& source_view, int source,
+                            const MultiViewOptions& options) {
+  if (!chain.anchor_from_view[source]) return "";
+  const PoseDifference d =
+      DifferenceAt(chain.anchor_from_view[source]->inverse() * result, source_view);
+  if (d.rotation_deg > options.chained_decline_factor * options.max_pair_rotation_deg ||
+      d.shift_m > options.chained_decline_factor * options.max_pair_shift_m) {
+    return "";
+  }
+  return fmt::format("its result agrees with the trusted pairs' chain ({:.1f} deg, {:.0f} mm)",
+                     d.rotation_deg, 1e3 * d.shift_m);
+}
+
 // A pair whose first result failed for too little overlap but agrees with the chain of the pairs
 // trusted at their first attempt between its two views is right, only seen from views too far
 // apart to overlap more: its retries would find the same result again (on the synthetic
@@ -29,41 +48,77 @@ void DeclineChainedPairs(const std::vector<RegistrationView>& views,
   const int n = static_cast<int>(views.size());
   for (PairEdge& edge : pairs) {
     const PairResult& r = edge.result;
-    if (r.ok() || r.attempts.empty() || !r.attempts.front().refined ||
+    if (r.ok() || !r.declined.empty() || r.attempts.empty() || !r.attempts.front().refined ||
         r.fine.fitness >= options.pair.min_fitness) {
       continue;
     }
-    const ChainedPoses chain = ChainPoses(pairs, trusted, n, edge.target);
-    if (!chain.anchor_from_view[edge.source]) continue;
-    const PoseDifference d = DifferenceAt(
-        chain.anchor_from_view[edge.source]->inverse() * r.target_from_source, views[edge.source]);
-    if (d.rotation_deg <= options.chained_decline_factor * options.max_pair_rotation_deg &&
-        d.shift_m <= options.chained_decline_factor * options.max_pair_shift_m) {
-      DeclinePair(fmt::format("declined without retries: its result agrees with the trusted "
-                              "pairs' chain ({:.1f} deg, {:.0f} mm)",
-                              d.rotation_deg, 1e3 * d.shift_m),
-                  edge.result);
-    }
+    const std::string agrees =
+        AgreesWithChain(ChainPoses(pairs, trusted, n, edge.target), r.target_from_source,
+                        views[edge.source], edge.source, options);
+    if (!agrees.empty()) DeclinePair("declined without retries: " + agrees, edge.result);
   }
 }
 
-// Every pair around the ring (ViewPairs), each registered on its own, all at once (each pair's
-// ICP is parallel too): first attempts, then the retries of the pairs not declined.
+// Neighbours around the ring first: their trusted pairs chain the views together, so that the
+// pairs between views further apart, which overlap less, can be declined before their turn
+// screen when their first result already agrees with that chain (the screen is most of such a
+// pair's time, and it finds nothing better for a right result).
+bool IsNeighbourPair(const PairEdge& edge, int view_count) {
+  const int gap = std::abs(edge.source - edge.target);
+  return gap == 1 || gap == view_count - 1;
+}
+
+// The screen gate of the pairs registered after the neighbours (RegisterPairFirstAttempt): a
+// result overlapping less than min_fitness that agrees with the neighbours' chain is declined.
+ScreenGate ChainGate(const std::vector<ChainedPoses>& chains, const RegistrationView& source_view,
+                     const PairEdge& edge, const MultiViewOptions& options) {
+  return [&chains, &source_view, &options, source = edge.source, target = edge.target](
+             const Eigen::Isometry3d& result, double view_overlap) -> std::string {
+    if (view_overlap >= options.pair.min_fitness) return "";
+    const std::string agrees =
+        AgreesWithChain(chains[target], result, source_view, source, options);
+    return agrees.empty() ? "" : "declined without its turn screen and retries: " + agrees;
+  };
+}
+
+// First attempts of `which` pairs, all at once (each pair's ICP is parallel too); Ctrl-C stops
+// between pairs (TBB carries the exception out of the loop).
+void RunFirstAttempts(const std::vector<RegistrationView>& views, const MultiViewOptions& options,
+                      const std::vector<size_t>& which, const std::vector<ChainedPoses>* chains,
+                      std::vector<PairEdge>& pairs) {
+  oneapi::tbb::parallel_for(size_t{0}, which.size(), [&](size_t i) {
+    ThrowIfInterrupted();
+    PairEdge& edge = pairs[which[i]];
+    const ScreenGate gate =
+        chains ? ChainGate(*chains, views[edge.source], edge, options) : ScreenGate{};
+    edge.result =
+        RegisterPairFirstAttempt(views[edge.source], views[edge.target], options.pair, gate);
+  });
+}
+
+// Every pair around the ring (ViewPairs), each registered on its own: the neighbours' first
+// attempts, the others' (declined before their screen where the neighbours' chain says they
+// are right), then the retries of the pairs not declined.
 std::vector<PairEdge> RegisterViewPairs(const std::vector<RegistrationView>& views,
                                         const MultiViewOptions& options) {
+  const int n = static_cast<int>(views.size());
   std::vector<PairEdge> pairs;
-  for (const auto& [s, t] : ViewPairs(static_cast<int>(views.size()), options)) {
+  std::vector<size_t> neighbours, others;
+  for (const auto& [s, t] : ViewPairs(n, options)) {
     PairEdge edge;
     edge.source = s;
     edge.target = t;
+    (IsNeighbourPair(edge, n) ? neighbours : others).push_back(pairs.size());
     pairs.push_back(edge);
   }
-  // Ctrl-C stops between pairs (TBB carries the exception out of the loop).
-  oneapi::tbb::parallel_for(size_t{0}, pairs.size(), [&](size_t e) {
-    ThrowIfInterrupted();
-    PairEdge& edge = pairs[e];
-    edge.result = RegisterPairFirstAttempt(views[edge.source], views[edge.target], options.pair);
-  });
+  RunFirstAttempts(views, options, neighbours, nullptr, pairs);
+  std::vector<ChainedPoses> chains;
+  if (options.chained_decline_factor > 0 && !others.empty()) {
+    std::vector<char> trusted(pairs.size(), 0);
+    for (const size_t e : neighbours) trusted[e] = pairs[e].result.ok();
+    for (int v = 0; v < n; ++v) chains.push_back(ChainPoses(pairs, trusted, n, v));
+  }
+  RunFirstAttempts(views, options, others, chains.empty() ? nullptr : &chains, pairs);
   DeclineChainedPairs(views, options, pairs);
   oneapi::tbb::parallel_for(size_t{0}, pairs.size(), [&](size_t e) {
     ThrowIfInterrupted();

@@ -46,7 +46,9 @@ struct MultiViewOptions {
   // >= 0 (0: never): a pair whose first attempt overlaps too little but lands within this many
   // times max_pair_rotation_deg and max_pair_shift_m of the chain of pairs trusted at their first
   // attempt is declined without its retries (they find the same result again: views too far
-  // apart around the tree to overlap more).
+  // apart around the tree to overlap more). Pairs of views further apart than neighbours are
+  // registered after the neighbours and checked against the neighbours' chain before their turn
+  // screen, most of such a pair's time.
   double chained_decline_factor = 2.0;
 
   // Throws InputError naming the field of a nonsense value (pair.sac_ia.iterations, ...).

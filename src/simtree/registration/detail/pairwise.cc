@@ -434,13 +434,26 @@ FineResult AverageWithReverse(const RegistrationView& source, const Registration
 
 TurnedFineResult RefineWithTurns(const RegistrationView& source, const RegistrationView& target,
                                  const Eigen::Isometry3d& initial, const PairOptions& options,
-                                 const std::vector<double>& shifts_m, int refinements) {
+                                 const std::vector<double>& shifts_m, int refinements,
+                                 const ScreenGate& gate) {
   options.Validate();
   TurnedFineResult result;
   result.fine = RefinePair(source, target, initial, options);
   if (!target.trunk) return result;
   const Eigen::Isometry3d found = result.fine.icp.target_from_source;
   result.screened = result.fine.icp.fitness < options.screen_below_overlap;
+  if (result.screened && gate) {
+    // The gate sees the result as the pair would keep it unscreened: averaged with the reverse.
+    FineResult unscreened = options.symmetric_fine
+                                ? AverageWithReverse(source, target, result.fine, options)
+                                : result.fine;
+    result.declined = gate(unscreened.icp.target_from_source, unscreened.icp.fitness);
+    if (!result.declined.empty()) {
+      result.fine = std::move(unscreened);
+      result.screened = false;
+      return result;
+    }
+  }
   const int wanted =
       result.screened ? (refinements >= 0 ? refinements : options.turned_refinements) : 0;
   for (const TrunkMove& move : ScreenMoves(source, target, found, shifts_m, wanted, options)) {
@@ -513,14 +526,15 @@ SacIaPrior CoarsePrior(const RegistrationView& source, const RegistrationView& t
 }
 
 // The fine stage from the coarse result in `result`, the turn screen included: its pose and
-// what it measured go into `result`.
-void RefineCoarseResult(const RegistrationView& source, const RegistrationView& target,
-                        const std::optional<SharedKeyRegion>& shared, const PairOptions& options,
-                        PairResult& result) {
+// what it measured go into `result`. Returns the gate's reason to decline ("": none).
+std::string RefineCoarseResult(const RegistrationView& source, const RegistrationView& target,
+                               const std::optional<SharedKeyRegion>& shared,
+                               const PairOptions& options, const ScreenGate& gate,
+                               PairResult& result) {
   const TurnedFineResult turned =
       RefineWithTurns(source, target, result.target_from_source, options,
                       ScreenShifts(source, target, shared ? shared->source.radius_m : 0.0, options),
-                      options.screen_shift_share > 0 ? options.shifted_refinements : -1);
+                      options.screen_shift_share > 0 ? options.shifted_refinements : -1, gate);
   const FineResult& fine = turned.fine;
   result.turned_deg = turned.turned_deg;
   result.shifted_m = turned.shifted_m;
@@ -530,12 +544,13 @@ void RefineCoarseResult(const RegistrationView& source, const RegistrationView& 
   result.trunk_constraint = fine.trunk_constraint;
   result.ground_constraint = fine.ground_constraint;
   result.target_from_source = fine.icp.target_from_source;
+  return turned.declined;
 }
 
-// One attempt: key regions, coarse (SAC-IA, snapped to the priors), fine with the turn screen,
-// then the paper's columns and the checks.
+// One attempt: key regions, coarse (SAC-IA, snapped to the priors), fine with the turn screen
+// (unless `gate` declines it first), then the paper's columns and the checks.
 PairResult RegisterPairOnce(const RegistrationView& source, const RegistrationView& target,
-                            const PairOptions& options) {
+                            const PairOptions& options, const ScreenGate& gate = {}) {
   const auto start = std::chrono::steady_clock::now();
   PairResult result;
   result.source = source.name;
@@ -571,7 +586,8 @@ PairResult RegisterPairOnce(const RegistrationView& source, const RegistrationVi
                                                     target, shared, options.ground_as_up);
   }
   result.target_from_source = result.coarse.target_from_source;
-  if (options.run_icp) RefineCoarseResult(source, target, shared, options, result);
+  std::string declined;
+  if (options.run_icp) declined = RefineCoarseResult(source, target, shared, options, gate, result);
   result.seconds = SecondsSince(start);
   result.coarse_overlap =
       CoarseOverlap(source_coarse.points, target_coarse.points, result.target_from_source,
@@ -580,6 +596,7 @@ PairResult RegisterPairOnce(const RegistrationView& source, const RegistrationVi
   result.match_rate = match.share;
   result.rmse_m = match.rmse_m;
   CheckPair(source, target, options, result);
+  if (!declined.empty()) DeclinePair(declined, result);
   return result;
 }
 
@@ -731,9 +748,9 @@ void PairOptions::Validate() const {
 }
 
 PairResult RegisterPairFirstAttempt(const RegistrationView& source, const RegistrationView& target,
-                                    const PairOptions& options) {
+                                    const PairOptions& options, const ScreenGate& gate) {
   options.Validate();
-  PairResult result = RegisterPairOnce(source, target, options);
+  PairResult result = RegisterPairOnce(source, target, options, gate);
   result.attempts.push_back(RunOf(result, PairAttempt::kFirst, options));
   return result;
 }

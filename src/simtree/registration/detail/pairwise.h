@@ -4,6 +4,7 @@
 // checks that decide whether the result is trusted: a pair that fails them is reported as failed
 // with the reason, never passed on as if it had registered.
 
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -254,15 +255,25 @@ FineResult AverageWithReverse(const RegistrationView& source, const Registration
 // finds best, `refinements` of them (-1: turned_refinements), when the result from `initial`
 // overlaps less than screen_below_overlap; the result whose view overlaps most
 // (IcpResult::fitness) is kept, then averaged with the reverse (symmetric_fine).
+//
+// `gate` (optional) is asked before the screen, with the result as found (averaged with the
+// reverse when symmetric_fine) and its view overlap:
+// a reason to stop there ("declined"), or "" to go on. The screen is most of a poorly overlapping
+// pair's time; a caller who can tell the result is right without it (RegisterViews: the chain of
+// the neighbours' trusted pairs) saves it.
+using ScreenGate =
+    std::function<std::string(const Eigen::Isometry3d& target_from_source, double view_overlap)>;
 struct TurnedFineResult {
   FineResult fine;
   double turned_deg = 0.0;  // the turn kept (0: the result from `initial`)
   double shifted_m = 0.0;   // the shift along the trunk kept
   bool screened = false;    // the screen ran (the result overlapped less than screen_below_overlap)
+  std::string declined;     // the gate's reason to stop before the screen ("": it did not)
 };
 TurnedFineResult RefineWithTurns(const RegistrationView& source, const RegistrationView& target,
                                  const Eigen::Isometry3d& initial, const PairOptions& options = {},
-                                 const std::vector<double>& shifts_m = {0.0}, int refinements = -1);
+                                 const std::vector<double>& shifts_m = {0.0}, int refinements = -1,
+                                 const ScreenGate& gate = {});
 
 // Coarse, fine with turns, checks. While the result overlaps too little (min_fitness), once
 // more with the other key regions (retry_other_key_regions), with shifts along the trunk
@@ -273,9 +284,10 @@ PairResult RegisterPair(const RegistrationView& source, const RegistrationView& 
 
 // RegisterPair in two steps, so that a caller who knows more (RegisterViews: the chain of other
 // pairs) may decline a pair between them: the first attempt (PairResult::attempts[0]), then the
-// retries of a result not declined.
+// retries of a result not declined. `gate` may decline the first attempt before its turn screen
+// (RefineWithTurns); the pair is then declined (PairResult::declined).
 PairResult RegisterPairFirstAttempt(const RegistrationView& source, const RegistrationView& target,
-                                    const PairOptions& options = {});
+                                    const PairOptions& options = {}, const ScreenGate& gate = {});
 void RetryPair(const RegistrationView& source, const RegistrationView& target,
                const PairOptions& options, PairResult& result);
 // Marks `result` declined for `reason` (PairResult::declined, appended to the status): RetryPair
