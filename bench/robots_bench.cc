@@ -1,8 +1,10 @@
 // MuJoCo steps per second of an exported tree against its branch count: a regular ternary tree
-// (every branch 3 nodes, 3 children at its middle and tip) of 100 to 1,000 branches, exported
-// as MJCF (segments per branch and twist hinges as the arguments say), stepped from rest with a
-// push of twice its weight on the last twig, with MuJoCo's phase timers (the share of a step in
-// each phase). The bar: >= 1,000 steps per second at 1,000 branches.
+// (robots_ternary_tree.h) of 100 to 1,000 branches and the authors' tree01, exported as MJCF
+// (at the defaults, where the step budget chooses, or at the segments per branch and twist
+// hinges the arguments say, with no budget), stepped from rest with a push of twice its weight
+// on the last twig, with MuJoCo's phase timers (the share of a step in each phase), the step
+// budget's estimate (est_steps_per_s) and what it is estimated from (dofs, depth_sq_sum). The
+// issue's bar: >= 1,000 steps per second at 1,000 branches.
 //   build/bin/bench_robots --benchmark_counters_tabular=true
 
 #include <benchmark/benchmark.h>
@@ -14,50 +16,12 @@
 
 #include <Eigen/Geometry>
 
+#include "robots_ternary_tree.h"
 #include "simtree/core/frames.h"
 #include "simtree/core/tree_file.h"
 #include "simtree/robots/export_robot.h"
 
 namespace {
-
-simtree::Tree TernaryTree(int branch_count) {
-  simtree::Tree tree;
-  simtree::Branch trunk;
-  trunk.nodes = {{Eigen::Vector3d(0, 0, 0), 0.08},
-                 {Eigen::Vector3d(0, 0, 0.8), 0.07},
-                 {Eigen::Vector3d(0, 0, 1.6), 0.06}};
-  tree.branches.push_back(trunk);
-  for (int id = 0; static_cast<int>(tree.branches.size()) < branch_count; ++id) {
-    const simtree::Branch parent = tree.branches[id];
-    const Eigen::Vector3d axis = (parent.tip().position - parent.base().position).normalized();
-    const double length = (parent.tip().position - parent.base().position).norm() * 0.7;
-    for (int k = 0; k < 3 && static_cast<int>(tree.branches.size()) < branch_count; ++k) {
-      const int node = k == 0 ? 1 : 2;
-      const double heading = 2.0944 * k + 0.7 * id;
-      const Eigen::Vector3d side = axis.unitOrthogonal() * std::cos(heading) +
-                                   axis.cross(axis.unitOrthogonal()) * std::sin(heading);
-      const Eigen::Vector3d direction = (axis + 0.9 * side).normalized();
-      const Eigen::Vector3d base = parent.nodes[node].position;
-      const double radius = parent.nodes[node].radius * 0.6;
-      simtree::Branch child;
-      child.id = static_cast<int>(tree.branches.size());
-      child.parent = id;
-      child.parent_node = node;
-      child.nodes = {{base, radius},
-                     {base + 0.5 * length * direction, 0.8 * radius},
-                     {base + length * direction, 0.6 * radius}};
-      tree.branches.push_back(child);
-    }
-  }
-  simtree::AssignLevels(tree);
-  simtree::ComputeFrames(tree);
-  for (simtree::Branch& b : tree.branches) {
-    b.material = simtree::Material::FromFrequencyDampingStiffness(
-        b.is_trunk() ? 3.0 : 1.2, 0.04, b.is_trunk() ? 5000.0 : 50.0,
-        simtree::MaterialSource::kAssumed);
-  }
-  return tree;
-}
 
 // MuJoCo's phase timers read this clock (ms).
 mjtNum ClockMs() {
@@ -129,8 +93,14 @@ void BM_MujocoStep(benchmark::State& state) {
   options.model.segments_per_branch = static_cast<int>(state.range(1));
   if (state.range(2) == 0) options.model.twist = simtree::robots::TwistHinges::kNone;
   options.model.collidable = state.range(3) != 0;
-  StepExported(TernaryTree(static_cast<int>(state.range(0))), options,
+  StepExported(bench::TernaryTree(static_cast<int>(state.range(0))), options,
                "robots_" + std::to_string(state.range(0)), state);
+}
+
+// At the export's defaults: the step budget chooses the resolution (counters segments, twist).
+void BM_MujocoStepDefaults(benchmark::State& state) {
+  StepExported(bench::TernaryTree(static_cast<int>(state.range(0))), {},
+               "robots_defaults_" + std::to_string(state.range(0)), state);
 }
 
 // The authors' tree01 (95 branches) at the export's defaults (range 0 = 1) or at the given
@@ -161,6 +131,7 @@ BENCHMARK(BM_MujocoStep)
     ->Args({1000, 1, 0, 1})
     ->Args({1000, 1, 0, 0})
     ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MujocoStepDefaults)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMicrosecond);
 // Arguments: segments per branch, twist hinges (1 auto, 0 none).
 BENCHMARK(BM_MujocoStepTree01)
     ->Args({4, 1})
