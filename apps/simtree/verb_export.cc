@@ -106,6 +106,11 @@ void RegisterExport(CLI::App& app) {
         result.segments_per_branch, result.hinges, result.sites, result.total_mass_kg,
         result.time_step_s);
     std::printf("step budget: %s\n", result.budget.Summary().c_str());
+    const robots::CalibrationReport& calibration = result.calibration;
+    if (calibration.gravity_stiffened_hinges > 0) {
+      std::printf("gravity: %d hinges stiffened (up to +%.0f%%) so the whole tree stands\n",
+                  calibration.gravity_stiffened_hinges, 100 * calibration.gravity_largest_raise);
+    }
     std::fflush(stdout);  // before the warning on stderr
     if (result.budget.over_budget) {
       spdlog::warn(
