@@ -1,8 +1,10 @@
 // MuJoCo steps per second of an exported tree against its branch count: a regular ternary tree
-// (every branch 3 nodes, 3 children at its middle and tip) of 100 to 1,000 branches, exported
-// as MJCF (segments per branch and twist hinges as the arguments say), stepped from rest with a
-// push of twice its weight on the last twig, with MuJoCo's phase timers (the share of a step in
-// each phase). The bar: >= 1,000 steps per second at 1,000 branches.
+// (robots_ternary_tree.h) of 100 to 1,000 branches and the authors' tree01, exported as MJCF
+// (at the defaults, where the step budget chooses, or at the segments per branch and twist
+// hinges the arguments say, with no budget), stepped from rest with a push of twice its weight
+// on the last twig, with MuJoCo's phase timers (the share of a step in each phase), the step
+// budget's estimate (est_steps_per_s) and what it is estimated from (dofs, depth_sq_sum). The
+// issue's bar: >= 1,000 steps per second at 1,000 branches.
 //   build/bin/bench_robots --benchmark_counters_tabular=true
 
 #include <benchmark/benchmark.h>
@@ -14,49 +16,12 @@
 
 #include <Eigen/Geometry>
 
+#include "robots_ternary_tree.h"
 #include "simtree/core/frames.h"
+#include "simtree/core/tree_file.h"
 #include "simtree/robots/export_robot.h"
 
 namespace {
-
-simtree::Tree TernaryTree(int branch_count) {
-  simtree::Tree tree;
-  simtree::Branch trunk;
-  trunk.nodes = {{Eigen::Vector3d(0, 0, 0), 0.08},
-                 {Eigen::Vector3d(0, 0, 0.8), 0.07},
-                 {Eigen::Vector3d(0, 0, 1.6), 0.06}};
-  tree.branches.push_back(trunk);
-  for (int id = 0; static_cast<int>(tree.branches.size()) < branch_count; ++id) {
-    const simtree::Branch parent = tree.branches[id];
-    const Eigen::Vector3d axis = (parent.tip().position - parent.base().position).normalized();
-    const double length = (parent.tip().position - parent.base().position).norm() * 0.7;
-    for (int k = 0; k < 3 && static_cast<int>(tree.branches.size()) < branch_count; ++k) {
-      const int node = k == 0 ? 1 : 2;
-      const double heading = 2.0944 * k + 0.7 * id;
-      const Eigen::Vector3d side = axis.unitOrthogonal() * std::cos(heading) +
-                                   axis.cross(axis.unitOrthogonal()) * std::sin(heading);
-      const Eigen::Vector3d direction = (axis + 0.9 * side).normalized();
-      const Eigen::Vector3d base = parent.nodes[node].position;
-      const double radius = parent.nodes[node].radius * 0.6;
-      simtree::Branch child;
-      child.id = static_cast<int>(tree.branches.size());
-      child.parent = id;
-      child.parent_node = node;
-      child.nodes = {{base, radius},
-                     {base + 0.5 * length * direction, 0.8 * radius},
-                     {base + length * direction, 0.6 * radius}};
-      tree.branches.push_back(child);
-    }
-  }
-  simtree::AssignLevels(tree);
-  simtree::ComputeFrames(tree);
-  for (simtree::Branch& b : tree.branches) {
-    b.material = simtree::Material::FromFrequencyDampingStiffness(
-        b.is_trunk() ? 3.0 : 1.2, 0.04, b.is_trunk() ? 5000.0 : 50.0,
-        simtree::MaterialSource::kAssumed);
-  }
-  return tree;
-}
 
 // MuJoCo's phase timers read this clock (ms).
 mjtNum ClockMs() {
@@ -77,15 +42,24 @@ void CountPhases(const mjData* d, benchmark::State& state) {
     state.counters[name] = 100 * d->timer[timer].duration / step;
 }
 
-void BM_MujocoStep(benchmark::State& state) {
+// What the mass-matrix factorisation walks: per dof, the dofs on its path to the root (itself
+// counted), summed and summed squared.
+void CountDepths(const mjModel* m, benchmark::State& state) {
+  double sum = 0, sum_sq = 0;
+  for (int k = 0; k < m->nv; ++k) {
+    int depth = 0;
+    for (int i = k; i >= 0; i = m->dof_parentid[i]) ++depth;
+    sum += depth;
+    sum_sq += static_cast<double>(depth) * depth;
+  }
+  state.counters["depth_sum"] = sum;
+  state.counters["depth_sq_sum"] = sum_sq;
+}
+
+void StepExported(const simtree::Tree& tree, const simtree::robots::ExportOptions& options,
+                  const std::string& name, benchmark::State& state) {
   mjcb_time = ClockMs;
-  const simtree::Tree tree = TernaryTree(static_cast<int>(state.range(0)));
-  const auto path = std::filesystem::temp_directory_path() /
-                    ("simtree_bench_robots_" + std::to_string(state.range(0)) + ".xml");
-  simtree::robots::ExportOptions options;
-  options.model.segments_per_branch = static_cast<int>(state.range(1));
-  if (state.range(2) == 0) options.model.twist = simtree::robots::TwistHinges::kNone;
-  options.model.collidable = state.range(3) != 0;
+  const auto path = std::filesystem::temp_directory_path() / ("simtree_bench_" + name + ".xml");
   const simtree::robots::ExportResult exported = simtree::robots::ExportRobot(tree, options, path);
   char error[1000] = "";
   mjModel* m = mj_loadXML(path.c_str(), nullptr, error, sizeof(error));
@@ -98,26 +72,71 @@ void BM_MujocoStep(benchmark::State& state) {
   for (auto _ : state) mj_step(m, d);
   state.counters["branches"] = tree.size();
   state.counters["bodies"] = exported.bodies;
+  state.counters["segments"] = exported.segments_per_branch;
+  state.counters["twist"] = exported.budget.twist != simtree::robots::TwistHinges::kNone;
   state.counters["dofs"] = m->nv;
   state.counters["dt_ms"] = 1e3 * m->opt.timestep;
   state.counters["unstable"] = d->warning[mjWARN_BADQACC].number;
   CountPhases(d, state);
+  CountDepths(m, state);
+  state.counters["est_steps_per_s"] = exported.budget.cost.steps_per_second;
   state.counters["steps_per_s"] =
       benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
   mj_deleteData(d);
   mj_deleteModel(m);
   std::filesystem::remove(path);
 }
+
+void BM_MujocoStep(benchmark::State& state) {
+  simtree::robots::ExportOptions options;
+  options.budget.min_steps_per_second = 0;  // exactly as asked
+  options.model.segments_per_branch = static_cast<int>(state.range(1));
+  if (state.range(2) == 0) options.model.twist = simtree::robots::TwistHinges::kNone;
+  options.model.collidable = state.range(3) != 0;
+  StepExported(bench::TernaryTree(static_cast<int>(state.range(0))), options,
+               "robots_" + std::to_string(state.range(0)), state);
+}
+
+// At the export's defaults: the step budget chooses the resolution (counters segments, twist).
+void BM_MujocoStepDefaults(benchmark::State& state) {
+  StepExported(bench::TernaryTree(static_cast<int>(state.range(0))), {},
+               "robots_defaults_" + std::to_string(state.range(0)), state);
+}
+
+// The authors' tree01 (95 branches) at the export's defaults (range 0 = 1) or at the given
+// segments per branch (range 0) and twist (range 1).
+void BM_MujocoStepTree01(benchmark::State& state) {
+  simtree::TreeFileOptions read;
+  read.legacy_parameters = SIMTREE_SHARED_DATA_DIR "/authors-demo/tree_parameters.txt";
+  const simtree::Tree tree =
+      simtree::ReadTreeFile(SIMTREE_SHARED_DATA_DIR "/authors-demo/tree_model/tree01.txt", read);
+  simtree::robots::ExportOptions options;
+  options.budget.min_steps_per_second = 0;  // exactly as asked
+  options.model.segments_per_branch = static_cast<int>(state.range(0));
+  if (state.range(1) == 0) options.model.twist = simtree::robots::TwistHinges::kNone;
+  StepExported(tree, options, "robots_tree01", state);
+}
 // Arguments: branches, segments per branch, twist hinges (1 auto, 0 none), --collidable (1) or
 // not (0).
 BENCHMARK(BM_MujocoStep)
     ->Args({100, 4, 1, 0})
+    ->Args({300, 4, 1, 0})
+    ->Args({300, 2, 1, 0})
     ->Args({1000, 4, 1, 0})
+    ->Args({1000, 3, 1, 0})
+    ->Args({1000, 2, 1, 0})
     ->Args({1000, 2, 0, 0})
     ->Args({1000, 1, 1, 1})
     ->Args({1000, 1, 1, 0})
     ->Args({1000, 1, 0, 1})
     ->Args({1000, 1, 0, 0})
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MujocoStepDefaults)->Arg(100)->Arg(300)->Arg(1000)->Unit(benchmark::kMicrosecond);
+// Arguments: segments per branch, twist hinges (1 auto, 0 none).
+BENCHMARK(BM_MujocoStepTree01)
+    ->Args({4, 1})
+    ->Args({2, 1})
+    ->Args({1, 0})
     ->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -40,18 +40,28 @@ void RegisterExport(CLI::App& app) {
       ->check(CLI::ExistingFile);
   verb->add_option("-o,--out", args->output, "Model file to write (.xml, .urdf, .sdf)")->required();
   verb->add_option("--format", args->format, "mjcf, urdf or sdf")->capture_default_str();
-  verb->add_option("--segments-per-branch", args->options.model.segments_per_branch,
-                   "Rigid segments per branch (each with its hinges)")
+  CLI::Option* segments =
+      verb->add_option("--segments-per-branch", args->options.model.segments_per_branch,
+                       "Rigid segments per branch (each with its hinges). Unless given, the step "
+                       "budget may lower it for a large tree")
+          ->capture_default_str()
+          ->check(CLI::PositiveNumber);
+  verb->add_option("--min-steps-per-second", args->options.budget.min_steps_per_second,
+                   "Step budget: a tree whose MuJoCo step is estimated slower (on the 2-core "
+                   "machine of docs/benchmarks.md) gets fewer segments per branch, then no twist "
+                   "hinges, unless --segments-per-branch / --twist were given; 0 = no budget")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::NonNegativeNumber);
   verb->add_option("--max-bodies", args->options.model.max_bodies,
                    "Tree-wide budget of segments: more branches than budget/segments get fewer "
                    "segments each (at least 1); 0 = none")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
-  verb->add_option("--twist", args->twist,
-                   "Twist hinges: none, auto (branches that carry others) or all")
-      ->capture_default_str();
+  CLI::Option* twist = verb->add_option(
+      "--twist", args->twist,
+      "Twist hinges: none, auto (branches that carry others) or all. Unless given, the step "
+      "budget may drop them for a large tree");
+  twist->capture_default_str();
   verb->add_flag("--collidable", args->options.model.collidable,
                  "MJCF: a robot's geoms with conaffinity bit 2 can touch the tree's capsules "
                  "(contype 2); without it the capsules are left out of collision detection");
@@ -74,12 +84,16 @@ void RegisterExport(CLI::App& app) {
       "simtree export simready.json --format mjcf --out tree.xml",
       "simtree export simready.json --format urdf --out tree.urdf --segments-per-branch 2",
       "simtree export simready.json --format sdf --out tree.sdf --twist none",
+      "simtree export big.json --out big.xml --min-steps-per-second 0   # no step budget",
       "simtree export tree01.txt --params tree_parameters.txt --out tree01.xml",
   }));
-  verb->callback([args] {
+  verb->callback([args, segments, twist] {
     FinishTreeFileOptions(args->tree_options, args->parameters);
     args->options.format = robots::ParseRobotFormat(args->format);
     args->options.model.twist = robots::ParseTwistHinges(args->twist);
+    // What the user chose, the budget keeps.
+    args->options.budget.fixed_segments = segments->count() > 0;
+    args->options.budget.fixed_twist = twist->count() > 0;
     if (args->no_gravity) args->options.calibration.gravity = 0.0;
     RefuseToOverwriteInputs(args->output, {args->input, args->parameters});
     const Tree tree = ReadTreeFile(args->input, args->tree_options);
@@ -91,6 +105,20 @@ void RegisterExport(CLI::App& app) {
         robots::ToString(args->options.format), result.branches, result.bodies,
         result.segments_per_branch, result.hinges, result.sites, result.total_mass_kg,
         result.time_step_s);
+    std::printf("step budget: %s\n", result.budget.Summary().c_str());
+    const robots::CalibrationReport& calibration = result.calibration;
+    if (calibration.gravity_stiffened_hinges > 0) {
+      std::printf("gravity: %d hinges stiffened (up to +%.0f%%) so the whole tree stands\n",
+                  calibration.gravity_stiffened_hinges, 100 * calibration.gravity_largest_raise);
+    }
+    std::fflush(stdout);  // before the warning on stderr
+    if (result.budget.over_budget) {
+      spdlog::warn(
+          "the model is estimated to step slower than --min-steps-per-second {:.0f} at what "
+          "--segments-per-branch / --twist allow: fewer segments, --twist none or leaving them "
+          "to the budget would be faster",
+          args->options.budget.min_steps_per_second);
+    }
     spdlog::info("wrote {}", args->output);
   });
 }

@@ -7,13 +7,19 @@ namespace simtree::robots {
 
 void ExportOptions::Validate() const {
   CheckNested("model", model);
+  CheckNested("budget", budget);
   CheckNested("calibration", calibration);
 }
 
 RobotModel MakeRobotModel(const Tree& tree, const ExportOptions& options, const std::string& source,
-                          CalibrationReport* report) {
+                          CalibrationReport* report, StepBudget* budget) {
   options.Validate();
-  RobotModel model = BuildRobotModel(tree, options.model, source);
+  const StepBudget chosen = ChooseStepBudget(tree, options.model, options.budget, source);
+  RobotModelOptions resolved = options.model;
+  resolved.segments_per_branch = chosen.segments;
+  resolved.twist = chosen.twist;
+  RobotModel model = BuildRobotModel(tree, resolved, source);
+  if (budget) *budget = chosen;
   const CalibrationReport calibration = CalibrateRobotModel(tree, options.calibration, &model);
   if (report) *report = calibration;
   return model;
@@ -22,7 +28,8 @@ RobotModel MakeRobotModel(const Tree& tree, const ExportOptions& options, const 
 ExportResult ExportRobot(const Tree& tree, const ExportOptions& options,
                          const std::filesystem::path& out, const std::string& source) {
   ExportResult result;
-  const RobotModel model = MakeRobotModel(tree, options, source, &result.calibration);
+  const RobotModel model =
+      MakeRobotModel(tree, options, source, &result.calibration, &result.budget);
   WriteFileAtomically(out, WriteRobotFormat(model, options.format));
   result.branches = tree.size();
   result.bodies = static_cast<int>(model.segments.size());

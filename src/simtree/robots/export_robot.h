@@ -11,7 +11,9 @@
 //    under gravity (robot_calibration.h).
 //  - Sites: `marker_<id>` at every tape marker, `grasp_b<id>` midway along every branch,
 //    `tip_b<id>` at every tip.
-//  - A tree-wide budget (`max_bodies`) gives very large trees fewer segments per branch.
+//  - An automatic budget on a MuJoCo step's estimated cost (step_budget.h) gives large trees
+//    fewer segments per branch, then no twist hinges, unless the user fixed them; `max_bodies`
+//    caps the segment bodies.
 //
 // Usage:
 //   const simtree::Tree tree = simtree::ReadTreeFile("simready.json");
@@ -26,12 +28,14 @@
 #include "simtree/robots/robot_calibration.h"
 #include "simtree/robots/robot_formats.h"
 #include "simtree/robots/robot_model.h"
+#include "simtree/robots/step_budget.h"
 
 namespace simtree::robots {
 
 struct ExportOptions {
   RobotFormat format = RobotFormat::kMjcf;
   RobotModelOptions model;
+  StepBudgetOptions budget;
   CalibrationOptions calibration;
 
   void Validate() const;  // throws OptionError naming the field ("model.segments_per_branch")
@@ -45,12 +49,14 @@ struct ExportResult {
   int segments_per_branch = 0;  // after the budget
   double total_mass_kg = 0.0;
   double time_step_s = 0.0;  // the step written (MJCF) or recommended (URDF, SDF)
+  StepBudget budget;         // the resolution asked and written, and why
   CalibrationReport calibration;
 };
 
-// The calibrated model, without writing it.
+// The calibrated model at the budget's resolution, without writing it.
 RobotModel MakeRobotModel(const Tree& tree, const ExportOptions& options,
-                          const std::string& source = "tree", CalibrationReport* report = nullptr);
+                          const std::string& source = "tree", CalibrationReport* report = nullptr,
+                          StepBudget* budget = nullptr);
 
 // Writes `tree` in `options.format` to `out` (whole or not at all). Throws InputError naming
 // `source` and the branch for a tree that cannot be exported (no material, a zero radius or

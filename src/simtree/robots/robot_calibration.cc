@@ -10,6 +10,7 @@
 #include "simtree/core/option_checks.h"
 #include "simtree/core/units.h"
 #include "simtree/robots/detail/coupled_tuning.h"
+#include "simtree/robots/detail/gravity_floor.h"
 #include "simtree/robots/detail/joint_space_model.h"
 #include "simtree/robots/detail/spatial_inertia.h"
 
@@ -174,6 +175,7 @@ void CalibrationOptions::Validate() const {
   CheckInRange("step_safety", step_safety, 1e-3, 1.5);
   CheckAtLeast("coupled_iterations", coupled_iterations, 0);
   CheckAtLeast("coupled_max_hinges", coupled_max_hinges, 0);
+  CheckAtLeast("stability_max_hinges", stability_max_hinges, 0);
   CheckInRange("coupled_tolerance", coupled_tolerance, 1e-6, 0.5);
   CheckPositive("max_time_step_s", max_time_step_s);
 }
@@ -189,6 +191,13 @@ CalibrationReport CalibrateRobotModel(const Tree& tree, const CalibrationOptions
     }
   }
   CalibrationReport report;
+  const detail::GravityFloorReport floor =
+      detail::RaiseGravityFloor(options.gravity, options.stability_max_hinges, model);
+  omega_max *= std::sqrt(1.0 + floor.largest_raise);  // a stiffened hinge rings faster
+  report.gravity_checked = floor.checked;
+  report.gravity_stiffened_hinges = floor.stiffened_hinges;
+  report.gravity_largest_raise = floor.largest_raise;
+  report.gravity_lowest_stiffness = floor.lowest_stiffness_eigenvalue;
   if (options.coupled_iterations > 0 && model->HingeCount() <= options.coupled_max_hinges) {
     const detail::CoupledTuningReport coupled = detail::TuneCoupled(
         tree, options.coupled_iterations, options.coupled_tolerance, options.gravity, model);

@@ -13,6 +13,10 @@
 // tuning (detail/coupled_tuning.h) would then retune every branch plane on the free tree's modes;
 // it is off by default (it does not converge on tree01 yet, tests/robots/coupled_tuning_test.cc).
 //
+// The chains tuned, the whole tree's K + G must still be positive definite (a twist and a side
+// branch's bending can fall together): detail/gravity_floor.h stiffens the few hinges of a
+// negative direction until it is.
+//
 // Each hinge's spring reference balances gravity at the rest pose, so the exported tree hangs as
 // it was scanned (a scan is already the tree under its weight).
 
@@ -35,6 +39,9 @@ struct CalibrationOptions {
   int coupled_max_hinges = 1500;
   double coupled_tolerance = 0.01;
   double max_time_step_s = 0.002;
+  // The whole tree's stability under gravity (detail/gravity_floor.h) is checked and restored on
+  // trees of at most this many hinges (a dense eigenproblem of that size; tree01 has 844).
+  int stability_max_hinges = 1500;
 
   void Validate() const;  // throws OptionError naming the field
 };
@@ -48,6 +55,13 @@ struct CalibrationReport {
   int groups_off = 0;  // branch bending planes more than 5% off in frequency (linear model)
   double lowest_eigenvalue = 0.0;  // of the whole tree's linearisation, gravity counted (when run)
   int unstable_modes = 0;          // its eigenvalues below zero
+  // The whole tree's stability under gravity (detail/gravity_floor.h), on trees of at most
+  // stability_max_hinges hinges: hinges stiffened to keep K + G positive definite, the largest
+  // relative raise, and K + G's lowest eigenvalue after (N m / rad).
+  bool gravity_checked = false;
+  int gravity_stiffened_hinges = 0;
+  double gravity_largest_raise = 0.0;
+  double gravity_lowest_stiffness = 0.0;
 };
 
 // Fills every hinge's stiffness, damping and spring reference, and model->time_step_s and
