@@ -52,7 +52,7 @@ void RegisterBuild(CLI::App& app) {
     std::string input, materials, output, parameters, species, default_material;
     TreeFileOptions tree_options;
     simready::BuildOptions build;
-    bool no_subtree_mass = false;
+    bool no_subtree_mass = false, keep_uncertain = false, trust_all = false;
   };
   auto args = std::make_shared<Args>();
   CLI::App* verb = app.add_subcommand(
@@ -85,6 +85,25 @@ void RegisterBuild(CLI::App& app) {
   verb->add_flag("--no-subtree-mass", args->no_subtree_mass,
                  "Modal mass of a branch's own wood only (default: the sub-trees riding on it "
                  "count too)");
+  verb->add_flag("--keep-uncertain", args->keep_uncertain,
+                 "Measured values flagged uncertain keep their own value (still flagged; default: "
+                 "the interpolation replaces them when it is more certain)");
+  verb->add_flag("--trust-all", args->trust_all,
+                 "Flag no measured value as uncertain (every measured branch keeps its value)");
+  verb->add_option("--max-frequency-sd", args->build.uncertainty.max_frequency_relative_std,
+                   "A measured frequency whose sd is over this share of its value is uncertain")
+      ->capture_default_str();
+  verb->add_option("--max-damping-sd", args->build.uncertainty.max_damping_relative_std,
+                   "A measured damping ratio whose sd is over this share of its value is uncertain "
+                   "(inf: off)")
+      ->capture_default_str();
+  verb->add_option("--max-z", args->build.uncertainty.max_z,
+                   "A measured frequency this many sd from what the other branches predict is "
+                   "uncertain (inf: off)")
+      ->capture_default_str();
+  verb->add_flag("--weight-by-sd", args->build.interpolation.weight_by_uncertainty,
+                 "Weight the interpolation's fit by each measured value's 1/sd^2 (floored at the "
+                 "median sd)");
   verb->add_flag("--depth-first-ids", args->build.renumber_depth_first,
                  "Renumber branches in depth-first order (each sub-tree gets consecutive ids)");
   AddTreeFileOptions(verb, args->tree_options, args->parameters);
@@ -103,6 +122,8 @@ void RegisterBuild(CLI::App& app) {
     }
     RefuseToOverwriteInputs(args->output, {args->input, args->materials});
     args->build.include_subtree_mass = !args->no_subtree_mass;
+    args->build.uncertainty.replace = !args->keep_uncertain;
+    args->build.uncertainty.flag = !args->trust_all;
     const Tree static_tree = ReadTreeFile(args->input, args->tree_options);
     simready::BuildReport report;
     Tree tree;
@@ -111,6 +132,11 @@ void RegisterBuild(CLI::App& app) {
           static_tree, identification::ReadMaterialsJson(args->materials), args->build, &report);
       spdlog::info("{} branches measured, {} interpolated: {}", report.measured,
                    report.interpolated, report.interpolation.Describe());
+      if (report.flagged > 0) {
+        spdlog::warn("{} measured values flagged uncertain, {} replaced by the interpolation:",
+                     report.flagged, report.replaced);
+        for (const std::string& line : report.flagged_why) spdlog::warn("  {}", line);
+      }
     } else {
       const simready::AssumedMaterial assumed = args->species.empty()
                                                     ? ParseDefaultMaterial(args->default_material)

@@ -8,6 +8,7 @@
 #include "identification/tree_fixture.h"
 #include "simtree/core/error.h"
 #include "simtree/core/option_checks.h"
+#include "simtree/core/tree_json.h"
 #include "simtree/core/units.h"
 #include "simtree/core/validate.h"
 
@@ -143,6 +144,9 @@ TEST(SimulationReady, OptionsOutOfRangeNameTheField) {
   BuildOptions two_slopes;
   two_slopes.interpolation.min_branches_two_slopes = 0;
   EXPECT_EQ(error(two_slopes), "interpolation.min_branches_two_slopes");
+  BuildOptions z;
+  z.uncertainty.max_z = 0;
+  EXPECT_EQ(error(z), "uncertainty.max_z");
   EXPECT_THAT([] { InterpolationOptions{.min_branches_cantilever = 2}.Validate(); },
               ::testing::ThrowsMessage<InputError>(
                   HasSubstr("options: min_branches_cantilever: expected >= 3, got 2")));
@@ -212,6 +216,127 @@ TEST(SimulationReady, AssumedValuesAreCheckedAndUnknownSpeciesListTheKnownOnes) 
         BuildAssumedSimulationReadyTree(Tree{}, {1.2, 0.03, ""});
       },
       ::testing::ThrowsMessage<InputError>(HasSubstr("no branches")));
+}
+
+}  // namespace
+}  // namespace simtree::simready
+
+namespace simtree::simready {
+namespace {
+
+// Five branches read at 1.2 Hz to 0.5%, and branch 4 read badly (a link tracked with many gaps
+// reads noise: 0.41 Hz, damping 0.21, sd 0.3 Hz).
+identification::MaterialsFile WithOneBadlyRead() {
+  identification::MaterialsFile m =
+      Measured({{0, 1.18}, {1, 1.2}, {2, 1.22}, {3, 1.21}, {5, 1.19}, {4, 0.41}});
+  for (identification::BranchMaterial& b : m.branches) {
+    b.frequency_std_hz = 0.005 * b.modes[2].frequency_hz;
+    b.damping_std = 0.1 * b.modes[2].damping_ratio;
+  }
+  identification::BranchMaterial& bad = m.branches.back();
+  bad.modes[2].damping_ratio = 0.21;
+  bad.frequency_std_hz = 0.3;
+  bad.damping_std = 0.2;
+  return m;
+}
+
+TEST(SimulationReady, AValueWithAHugeDeviationIsFlaggedAndGetsTheInterpolatedValue) {
+  const Tree tree = test::IdentificationTree();
+  BuildReport report;
+  const Tree ready = BuildSimulationReadyTree(tree, WithOneBadlyRead(), {}, &report);
+  EXPECT_EQ(report.flagged, 1);
+  EXPECT_EQ(report.replaced, 1);
+  EXPECT_EQ(report.measured, 5);
+  EXPECT_EQ(report.interpolated, 1);
+  ASSERT_EQ(report.flagged_why.size(), 1u);
+  EXPECT_THAT(report.flagged_why[0], HasSubstr("branch 4"));
+  const Material& m4 = *ready.branches[4].material;
+  EXPECT_EQ(m4.source, MaterialSource::kInterpolated);
+  EXPECT_THAT(m4.uncertain, HasSubstr("frequency sd 73.2% of its value (over 10%)"));
+  EXPECT_THAT(m4.uncertain, HasSubstr("replaced by the interpolation"));
+  // The interpolation of the five trusted branches, which it was not fitted on.
+  EXPECT_NEAR(m4.modes[2].frequency_hz, report.interpolation.Frequency(ready, 4), 1e-12);
+  EXPECT_GE(m4.modes[2].frequency_hz, 1.18);
+  // Its damping ratio is the interpolation's too; its own still counts there (by default only
+  // frequencies are judged).
+  EXPECT_NEAR(m4.modes[2].damping_ratio, report.interpolation.Damping(2), 1e-12);
+  EXPECT_EQ(report.interpolation.measured, 5);
+  EXPECT_DOUBLE_EQ(report.interpolation.min_frequency_hz, 1.18);
+  for (int b : {0, 1, 2, 3, 5}) {
+    EXPECT_EQ(ready.branches[b].material->source, MaterialSource::kMeasured) << b;
+    EXPECT_TRUE(ready.branches[b].material->uncertain.empty()) << b;
+  }
+  // The note is written in tree JSON and read back; a file without it reads as not flagged.
+  const Tree back = TreeFromJson(TreeToJson(ready), "ready.json");
+  EXPECT_EQ(back.branches[4].material->uncertain, m4.uncertain);
+  EXPECT_TRUE(back.branches[0].material->uncertain.empty());
+  EXPECT_FALSE(TreeToJson(ready)["branches"][0]["material"].contains("uncertain"));
+}
+
+TEST(SimulationReady, KeepUncertainKeepsTheValueFlaggedAndTrustAllFlagsNone) {
+  const Tree tree = test::IdentificationTree();
+  BuildOptions keep;
+  keep.uncertainty.replace = false;
+  BuildReport report;
+  const Tree kept = BuildSimulationReadyTree(tree, WithOneBadlyRead(), keep, &report);
+  EXPECT_EQ(report.flagged, 1);
+  EXPECT_EQ(report.replaced, 0);
+  EXPECT_EQ(report.measured, 6);
+  const Material& m4 = *kept.branches[4].material;
+  EXPECT_EQ(m4.source, MaterialSource::kMeasured);
+  EXPECT_DOUBLE_EQ(m4.modes[2].frequency_hz, 0.41);
+  EXPECT_THAT(m4.uncertain, HasSubstr("kept"));
+  // Flagged values stay out of the interpolation's fit either way.
+  EXPECT_EQ(report.interpolation.measured, 5);
+
+  BuildOptions trust;
+  trust.uncertainty.flag = false;
+  const Tree trusted = BuildSimulationReadyTree(tree, WithOneBadlyRead(), trust, &report);
+  EXPECT_EQ(report.flagged, 0);
+  EXPECT_EQ(report.interpolation.measured, 6);
+  EXPECT_DOUBLE_EQ(trusted.branches[4].material->modes[2].frequency_hz, 0.41);
+  EXPECT_TRUE(trusted.branches[4].material->uncertain.empty());
+}
+
+TEST(SimulationReady, AnUncertainDampingRatioAloneTakesTheInterpolatedDamping) {
+  const Tree tree = test::IdentificationTree();
+  identification::MaterialsFile m = WithOneBadlyRead();
+  m.branches.back().modes[2].frequency_hz = 1.2;
+  m.branches.back().frequency_std_hz = 0.006;  // the frequency known, the damping not (95%)
+  BuildOptions damping;
+  damping.uncertainty.max_damping_relative_std = 0.5;  // off by default
+  BuildReport report;
+  const Tree ready = BuildSimulationReadyTree(tree, m, damping, &report);
+  EXPECT_EQ(report.flagged, 1);
+  EXPECT_EQ(report.replaced, 0);
+  const Material& m4 = *ready.branches[4].material;
+  EXPECT_EQ(m4.source, MaterialSource::kMeasured);
+  EXPECT_DOUBLE_EQ(m4.modes[2].frequency_hz, 1.2);
+  EXPECT_NEAR(m4.modes[2].damping_ratio, 0.03, 1e-12);  // the others' damping
+  EXPECT_THAT(m4.uncertain, HasSubstr("damping replaced by the interpolation"));
+}
+
+TEST(SimulationReady, AConfidentValueFarFromTheOthersIsFlaggedByItsZScore) {
+  const Tree tree = test::IdentificationTree();
+  identification::MaterialsFile m = WithOneBadlyRead();
+  m.branches.back().frequency_std_hz = 0.002;  // 0.41 Hz to 0.5%, yet 1.2 Hz all around
+  m.branches.back().damping_std = 0.01;
+  BuildReport report;
+  BuildOptions z_score;
+  z_score.uncertainty.max_z = 3;  // off by default
+  const Tree ready = BuildSimulationReadyTree(tree, m, z_score, &report);
+  EXPECT_EQ(report.flagged, 1);
+  EXPECT_THAT(ready.branches[4].material->uncertain, HasSubstr("sd from the"));
+  EXPECT_EQ(ready.branches[4].material->source, MaterialSource::kInterpolated);
+  BuildSimulationReadyTree(tree, m, {}, &report);
+  EXPECT_EQ(report.flagged, 0);
+  // A value without a deviation among values with one: its fit's covariance broke down.
+  m = WithOneBadlyRead();
+  m.branches.back().modes[2].frequency_hz = 1.2;
+  m.branches.back().frequency_std_hz = kNaN;
+  BuildSimulationReadyTree(tree, m, {}, &report);
+  ASSERT_EQ(report.flagged, 1);
+  EXPECT_THAT(report.flagged_why[0], HasSubstr("frequency sd unknown"));
 }
 
 }  // namespace

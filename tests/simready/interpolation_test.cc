@@ -5,8 +5,10 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "simtree/core/error.h"
 #include "identification/tree_fixture.h"
+#include "simtree/core/error.h"
+#include "simtree/core/units.h"
+#include "simtree/simready/detail/sample_weights.h"
 
 namespace simtree::simready {
 namespace {
@@ -87,6 +89,62 @@ TEST(Interpolation, NothingMeasuredOrAnUnknownBranchIsAnError) {
     EXPECT_THAT(e.what(), HasSubstr("branch 42"));
     EXPECT_THAT(e.what(), HasSubstr("6 branches"));
   }
+}
+
+}  // namespace
+}  // namespace simtree::simready
+
+namespace simtree::simready {
+namespace {
+
+TEST(SampleWeights, InverseVarianceFlooredAtTheMedianDeviation) {
+  // Relative sds 0.5%, 2%, 4%; not given; infinite. The floor is their median, 2%.
+  const std::vector<double> w =
+      InverseVarianceWeights({1.0, 2.0, 1.0, 1.0, 1.0},
+                             {0.005, 0.04, 0.04, kNaN, std::numeric_limits<double>::infinity()});
+  EXPECT_DOUBLE_EQ(w[0], 1.0);   // under the floor: the floor's weight
+  EXPECT_DOUBLE_EQ(w[1], 1.0);   // 0.04 of 2.0 is 2%
+  EXPECT_DOUBLE_EQ(w[2], 0.25);  // twice the floor's sd: a quarter
+  EXPECT_DOUBLE_EQ(w[3], 1.0);   // none given: a typical value
+  EXPECT_DOUBLE_EQ(w[4], 0.25);  // infinite: the least certain given
+  const std::vector<double> none = InverseVarianceWeights({1.0, 2.0}, {kNaN, kNaN});
+  EXPECT_EQ(none, std::vector<double>({1.0, 1.0}));
+}
+
+TEST(SampleWeights, WeightedMedianMatchesTheMedianForEqualWeights) {
+  EXPECT_DOUBLE_EQ(WeightedMedian({3, 1, 2}, {1, 1, 1}), 2.0);
+  EXPECT_DOUBLE_EQ(WeightedMedian({4, 1, 3, 2}, {1, 1, 1, 1}), 2.5);
+  EXPECT_DOUBLE_EQ(WeightedMedian({1, 2, 3}, {0.1, 0.1, 1}), 3.0);
+  EXPECT_TRUE(std::isnan(WeightedMedian({}, {})));
+}
+
+// The cantilever law on five branches known to 1%, and branch 3 read at twice its law with a 50%
+// deviation: the weighted fit follows the five, the unweighted one is pulled.
+TEST(Interpolation, WeightsByInverseVarianceFollowTheCertainBranches) {
+  const Tree tree = test::IdentificationTree();
+  std::vector<BranchSample> samples;
+  for (int b : {0, 1, 2, 4, 5}) {
+    const double f = Cantilever(tree.branches[b], 40.0);
+    samples.push_back({b, f, 0.03, 0.01 * f, 0.003});
+  }
+  const double law3 = Cantilever(tree.branches[3], 40.0);
+  samples.push_back({3, 2 * law3, 0.09, law3, 0.045});
+  InterpolationOptions weighted;
+  weighted.weight_by_uncertainty = true;
+  weighted.clamp_to_measured = false;
+  InterpolationOptions plain = weighted;
+  plain.weight_by_uncertainty = false;
+  const InterpolationModel w = FitInterpolationModel(tree, samples, weighted);
+  const InterpolationModel p = FitInterpolationModel(tree, samples, plain);
+  EXPECT_TRUE(w.weighted);
+  EXPECT_THAT(w.Describe(), HasSubstr("weighted by 1/sd^2"));
+  const Branch& b3 = tree.branches[3];
+  const double wf = w.Frequency(b3.base().radius, b3.Length());
+  const double pf = p.Frequency(b3.base().radius, b3.Length());
+  EXPECT_NEAR(wf / law3, 1.0, 0.01) << w.Describe();
+  EXPECT_GT(std::abs(pf / law3 - 1), 0.05) << p.Describe();
+  // Damping: branch 3's 0.09 (level 1, sd half its value) weighs 1/25 of the others'.
+  EXPECT_DOUBLE_EQ(w.Damping(1), 0.03);
 }
 
 }  // namespace

@@ -53,6 +53,10 @@ struct Material {
   double mass_kg = 0.0;
   double stiffness = 0.0;  // N/m
   MaterialSource source = MaterialSource::kDefault;
+  // Why a measured value was flagged uncertain by `simtree build` (its standard deviation, or how
+  // far it lies from the other branches); empty when it was not. The branch keeps `measured` when
+  // the value was kept, `interpolated` when the interpolation replaced it.
+  std::string uncertain;
 
   // One frequency and damping for all three modes, with the stiffness k (the paper's parameter
   // line "f zeta k"); the mass follows from k and f.

@@ -21,10 +21,12 @@ ojson MaterialJson(const Material& m) {
                      {"frequency_hz", mode.frequency_hz},
                      {"damping_ratio", mode.damping_ratio}});
   }
-  return {{"modes", modes},
-          {"mass_kg", m.mass_kg},
-          {"stiffness", m.stiffness},
-          {"source", ToString(m.source)}};
+  ojson out = {{"modes", modes},
+               {"mass_kg", m.mass_kg},
+               {"stiffness", m.stiffness},
+               {"source", ToString(m.source)}};
+  if (!m.uncertain.empty()) out["uncertain"] = m.uncertain;  // absent: not flagged (older files)
+  return out;
 }
 
 Material ReadMaterial(const JsonNode& j) {
@@ -44,6 +46,7 @@ Material ReadMaterial(const JsonNode& j) {
   m.stiffness = j.Number("stiffness");
   const JsonNode source = j.Field("source");
   m.source = ParseMaterialSource(source.String(), source.source(), source.at());
+  if (j.Has("uncertain")) m.uncertain = j.String("uncertain");
   return m;
 }
 

@@ -21,6 +21,7 @@ TreeSummary Summarize(const Tree& tree) {
     s.total_length_m += b.Length();
     if (!b.material) continue;
     ++s.with_material;
+    s.uncertain += !b.material->uncertain.empty();
     switch (b.material->source) {
       case MaterialSource::kMeasured:
         ++s.measured;
@@ -58,6 +59,7 @@ std::string FormatMaterialSources(const TreeSummary& s) {
   std::string out = fmt::format("{} measured, {} interpolated, {} default", s.measured,
                                 s.interpolated, s.defaulted);
   if (s.assumed > 0) out += fmt::format(", {} assumed", s.assumed);
+  if (s.uncertain > 0) out += fmt::format("; {} flagged uncertain", s.uncertain);
   return out;
 }
 

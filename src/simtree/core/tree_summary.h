@@ -20,6 +20,7 @@ struct TreeSummary {
   // Material ranges over branches that have one (all modes); zero when none.
   int with_material = 0;
   int measured = 0, interpolated = 0, defaulted = 0, assumed = 0;
+  int uncertain = 0;  // measured values `build` flagged (Material::uncertain), kept or replaced
   double min_frequency_hz = 0.0, max_frequency_hz = 0.0;
   double min_damping = 0.0, max_damping = 0.0;
 };
@@ -28,7 +29,7 @@ TreeSummary Summarize(const Tree& tree);
 // Human-readable, several lines, no trailing newline.
 std::string FormatSummary(const TreeSummary& summary);
 // Where the materials came from: "3 measured, 9 interpolated, 0 default" (assumed ones are named
-// only when there are some: "12 assumed").
+// only when there are some: "12 assumed"; so are uncertain ones: "2 flagged uncertain").
 std::string FormatMaterialSources(const TreeSummary& summary);
 
 }  // namespace simtree

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -88,6 +91,7 @@ Tree RenumberDepthFirst(const Tree& tree, std::vector<int>* new_id_out) {
 void BuildOptions::Validate() const {
   CheckPositive("wood_density_kg_m3", wood_density_kg_m3);
   CheckNested("interpolation", interpolation);
+  CheckNested("uncertainty", uncertainty);
 }
 
 void AssumedMaterial::Validate() const {
@@ -149,6 +153,22 @@ struct Measured {
   double mode_f[3] = {0, 0, 0}, mode_z[3] = {0, 0, 0};
 };
 
+// Where the estimator gave other values deviations, a value without one is a fit whose
+// covariance broke down (identify's rule, docs/identification.md "Table IV ranges"): as uncertain
+// as can be. Where none has one (an estimator that gives none), they stay unknown (NaN).
+void MissingDeviationsAreUnknown(std::vector<BranchSample>& samples) {
+  bool any_f = false, any_z = false;
+  for (const BranchSample& s : samples) {
+    any_f |= std::isfinite(s.frequency_std_hz);
+    any_z |= std::isfinite(s.damping_std);
+  }
+  constexpr double kUnknown = std::numeric_limits<double>::infinity();
+  for (BranchSample& s : samples) {
+    if (any_f && std::isnan(s.frequency_std_hz)) s.frequency_std_hz = kUnknown;
+    if (any_z && std::isnan(s.damping_std)) s.damping_std = kUnknown;
+  }
+}
+
 // Sets every measured branch's material from `m`; throws when a branch is not in the tree or
 // none is measured.
 Measured ApplyMeasuredMaterials(const identification::MaterialsFile& m, Tree& tree) {
@@ -170,13 +190,15 @@ Measured ApplyMeasuredMaterials(const identification::MaterialsFile& m, Tree& tr
     out.branch[b.branch] = true;
     // The twist mode carries the link's dominant value (a marker centre cannot see twist).
     const Mode& dominant = b.modes[2];
-    out.samples.push_back({b.branch, dominant.frequency_hz, dominant.damping_ratio});
+    out.samples.push_back({b.branch, dominant.frequency_hz, dominant.damping_ratio,
+                           b.frequency_std_hz, b.damping_std});
     for (int k = 0; k < 3; ++k) {
       ratio_f[k].push_back(b.modes[k].frequency_hz / dominant.frequency_hz);
       ratio_z[k].push_back(b.modes[k].damping_ratio / dominant.damping_ratio);
     }
   }
   if (out.samples.empty()) ThrowNothingMeasured(m);
+  MissingDeviationsAreUnknown(out.samples);
   for (int k = 0; k < 3; ++k) {
     out.mode_f[k] = Median(ratio_f[k]);
     out.mode_z[k] = Median(ratio_z[k]);
@@ -202,6 +224,82 @@ int InterpolateUnmeasured(const Measured& measured, const InterpolationModel& mo
     ++count;
   }
   return count;
+}
+
+// What SetAsideUncertain decided: each flagged branch's note, and the branches that keep their
+// measured frequency but take the interpolation's damping.
+struct SetAside {
+  std::vector<std::pair<int, std::string>> notes;
+  std::vector<int> damping_replaced;
+};
+
+// The samples whose frequency (or damping ratio) is not flagged; all of them when every one is.
+std::vector<BranchSample> Trusted(const std::vector<BranchSample>& samples,
+                                  const std::vector<SampleVerdict>& verdicts, bool frequency) {
+  std::vector<BranchSample> out;
+  for (size_t i = 0; i < samples.size(); ++i) {
+    if (!(frequency ? verdicts[i].frequency_flag : verdicts[i].damping_flag)) {
+      out.push_back(samples[i]);
+    }
+  }
+  return out.empty() ? samples : out;  // nothing trusted: nothing is more certain either
+}
+
+// The measured values to trust (uncertain_values.h): a flagged frequency is left out of the
+// interpolation's frequency fit, a flagged damping ratio out of its damping; a flagged frequency
+// the interpolation predicts more certainly makes its branch interpolated, a flagged damping
+// ratio alone only the branch's damping.
+SetAside SetAsideUncertain(const BuildOptions& options, const Tree& tree, Measured& measured,
+                           BuildReport& report) {
+  const std::vector<BranchSample>& samples = measured.samples;
+  const std::vector<SampleVerdict> verdicts =
+      JudgeSamples(tree, samples, options.uncertainty, options.interpolation);
+  const std::vector<BranchSample> trusted_f = Trusted(samples, verdicts, true);
+  const std::vector<BranchSample> trusted_z = Trusted(samples, verdicts, false);
+  report.interpolation = FitInterpolationModel(tree, trusted_f, options.interpolation);
+  const InterpolationModel damping = FitInterpolationModel(tree, trusted_z, options.interpolation);
+  report.interpolation.level_damping = damping.level_damping;
+  report.interpolation.median_damping = damping.median_damping;
+  SetAside out;
+  for (size_t i = 0; i < verdicts.size(); ++i) {
+    const SampleVerdict& v = verdicts[i];
+    if (v.why.empty()) continue;
+    const BranchSample& s = samples[i];
+    const bool replace_f = options.uncertainty.replace && trusted_f.size() < samples.size() &&
+                           FrequencyIsLessCertain(v, report.interpolation);
+    const bool replace_z = options.uncertainty.replace && trusted_z.size() < samples.size() &&
+                           !replace_f && DampingIsLessCertain(v, s, trusted_z);
+    const char* what = replace_f                     ? "replaced by the interpolation"
+                       : replace_z                   ? "damping replaced by the interpolation"
+                       : options.uncertainty.replace ? "kept (the interpolation is no more certain)"
+                                                     : "kept (--keep-uncertain)";
+    std::string note = fmt::format("measured {:.3f} Hz, damping {:.3f}: {}; {}", s.frequency_hz,
+                                   s.damping_ratio, v.why, what);
+    report.flagged_why.push_back(fmt::format("branch {}: {}", s.branch, note));
+    ++report.flagged;
+    if (replace_f) {
+      measured.branch[s.branch] = false;
+      ++report.replaced;
+    }
+    if (replace_z) out.damping_replaced.push_back(s.branch);
+    out.notes.emplace_back(s.branch, std::move(note));
+  }
+  report.measured = static_cast<int>(samples.size()) - report.replaced;
+  return out;
+}
+
+// Flagged branches' notes, and the interpolation's damping where it replaced only the damping.
+void MarkUncertain(const SetAside& set_aside, const Measured& measured,
+                   const InterpolationModel& model, Tree& tree) {
+  for (int b : set_aside.damping_replaced) {
+    Material& material = *tree.branches[b].material;
+    const double z = model.Damping(tree.branches[b].level);
+    for (int k = 0; k < 3; ++k) {
+      material.modes[k].damping_ratio = std::min(0.99, z * measured.mode_z[k]);
+    }
+  }
+  for (const auto& [branch, note] : set_aside.notes)
+    tree.branches[branch].material->uncertain = note;
 }
 
 // Every branch's modal mass and stiffness (paper Eq. 6); returns the whole tree's mass.
@@ -246,10 +344,11 @@ Tree BuildSimulationReadyTree(const Tree& static_tree,
   BuildReport report;
   Tree tree = PrepareStaticTree(static_tree);
   // Measured branches first: the interpolation of the others is fitted on them.
-  const Measured measured = ApplyMeasuredMaterials(MaterialsOnTree(tree, materials), tree);
-  report.measured = static_cast<int>(measured.samples.size());
-  report.interpolation = FitInterpolationModel(tree, measured.samples, options.interpolation);
+  Measured measured = ApplyMeasuredMaterials(MaterialsOnTree(tree, materials), tree);
+  // Uncertain values are set aside before the interpolation is fitted on the rest.
+  const SetAside set_aside = SetAsideUncertain(options, tree, measured, report);
   report.interpolated = InterpolateUnmeasured(measured, report.interpolation, tree);
+  MarkUncertain(set_aside, measured, report.interpolation, tree);
   report.total_mass_kg = AssignMassAndStiffness(options, tree);
   if (report_out) *report_out = std::move(report);
   return FinishSimulationReadyTree(std::move(tree), options);

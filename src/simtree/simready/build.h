@@ -4,6 +4,9 @@
 //
 //  - Measured branches take their modes from materials.json; the others are interpolated
 //    (interpolation.h) and marked so; nothing is measured at all -> an error, not a default.
+//  - A measured value its own standard deviation or its distance from the others says not to
+//    trust (uncertain_values.h) is flagged (Material::uncertain, the reason) and replaced by the
+//    interpolation when that is more certain (`source` then `interpolated`).
 //  - A tree without a pull test (BuildAssumedSimulationReadyTree): every branch gets one assumed
 //    frequency and damping ratio (typical of its kind of tree: typical_materials.h, or the
 //    user's), marked `assumed`, so that a static scan alone still animates.
@@ -37,6 +40,7 @@
 #include "simtree/identification/materials_file.h"
 #include "simtree/simready/detail/interpolation.h"
 #include "simtree/simready/detail/typical_materials.h"
+#include "simtree/simready/detail/uncertain_values.h"
 
 namespace simtree::simready {
 
@@ -48,6 +52,7 @@ struct BuildOptions {
   // follow their branches.
   bool renumber_depth_first = false;
   InterpolationOptions interpolation;  // for the branches no marker measured
+  UncertaintyOptions uncertainty;      // measured values flagged, and replaced, as uncertain
 
   // Throws InputError naming the field ("interpolation.min_branches_cantilever") for a value out
   // of range.
@@ -73,6 +78,10 @@ struct BuildReport {
   int measured = 0;      // branches whose modes come from materials.json
   int interpolated = 0;  // branches whose modes the interpolation gave
   int assumed = 0;       // branches given an AssumedMaterial (a tree without a pull test)
+  int flagged = 0;       // measured values flagged uncertain (kept or replaced)
+  int replaced = 0;      // of those, replaced by the interpolation (counted in `interpolated`)
+  // One line per flagged value: "branch 7: frequency sd 31.2% of its value (over 10%); replaced".
+  std::vector<std::string> flagged_why;
   InterpolationModel interpolation;
   double total_mass_kg = 0.0;  // the whole tree, density times volume
 };

@@ -11,6 +11,7 @@
 #include "simtree/core/option_checks.h"
 #include "simtree/core/statistics.h"
 #include "simtree/core/units.h"
+#include "simtree/simready/detail/sample_weights.h"
 
 namespace simtree::simready {
 namespace {
@@ -31,17 +32,18 @@ Eigen::VectorXd Features(FrequencyModelKind kind, double radius, double length) 
   return Eigen::VectorXd::Ones(1);
 }
 
-// Least-squares coefficients of log f on the features (the median of log f for the one-constant
-// models, so one odd branch does not pull the constant).
-std::vector<double> Fit(FrequencyModelKind kind, const std::vector<Eigen::VectorXd>& x,
-                        const std::vector<double>& y) {
-  if (x.front().size() == 1) return {Median(y)};
+// Weighted least-squares coefficients of log f on the features (the weighted median of log f for
+// the one-constant models, so one odd branch does not pull the constant).
+std::vector<double> Fit(const std::vector<Eigen::VectorXd>& x, const std::vector<double>& y,
+                        const std::vector<double>& w) {
+  if (x.front().size() == 1) return {WeightedMedian(y, w)};
   const int n = static_cast<int>(y.size()), p = static_cast<int>(x.front().size());
   Eigen::MatrixXd a(n, p);
   Eigen::VectorXd b(n);
   for (int i = 0; i < n; ++i) {
-    a.row(i) = x[i].transpose();
-    b[i] = y[i];
+    const double root_w = std::sqrt(w[i]);
+    a.row(i) = root_w * x[i].transpose();
+    b[i] = root_w * y[i];
   }
   const Eigen::VectorXd c = a.colPivHouseholderQr().solve(b);
   return std::vector<double>(c.data(), c.data() + c.size());
@@ -154,9 +156,10 @@ std::string InterpolationModel::Describe() const {
                             coefficients[1], coefficients[2]);
       break;
   }
-  return fmt::format("{}, clamped to {:.3f}-{:.3f} Hz, leave-one-out {:.1f}%, {} measured branches",
-                     formula, min_frequency_hz, max_frequency_hz,
-                     100 * (std::exp(leave_one_out_log_error) - 1), measured);
+  return fmt::format(
+      "{}, clamped to {:.3f}-{:.3f} Hz, leave-one-out {:.1f}%, {} measured branches{}", formula,
+      min_frequency_hz, max_frequency_hz, 100 * (std::exp(leave_one_out_log_error) - 1), measured,
+      weighted ? ", weighted by 1/sd^2" : "");
 }
 
 void InterpolationOptions::Validate() const {
@@ -173,18 +176,27 @@ struct Measurements {
   const Tree& tree;
   const std::vector<BranchSample>& samples;
   std::vector<double> log_f;
+  std::vector<double> weight_f, weight_z;           // per sample, 1 when unweighted
   std::vector<std::pair<double, double>> geometry;  // base radius, length
   std::vector<double> log_f_sum;                    // per branch
   std::vector<int> count;                           // per branch
 
-  Measurements(const Tree& t, const std::vector<BranchSample>& s) : tree(t), samples(s) {
+  Measurements(const Tree& t, const std::vector<BranchSample>& s, bool weighted)
+      : tree(t), samples(s) {
     log_f_sum.assign(tree.size(), 0.0);
     count.assign(tree.size(), 0);
+    std::vector<double> f, z, f_std, z_std;
     for (const BranchSample& sample : samples) {
       const Branch& b = tree.branches[sample.branch];
       geometry.emplace_back(b.base().radius, b.Length());
       log_f.push_back(std::log(sample.frequency_hz));
+      f.push_back(sample.frequency_hz);
+      z.push_back(sample.damping_ratio);
+      f_std.push_back(weighted ? sample.frequency_std_hz : kNaN);
+      z_std.push_back(weighted ? sample.damping_std : kNaN);
     }
+    weight_f = InverseVarianceWeights(f, f_std);
+    weight_z = InverseVarianceWeights(z, z_std);
     for (size_t i = 0; i < samples.size(); ++i) {
       log_f_sum[samples[i].branch] += log_f[i];
       ++count[samples[i].branch];
@@ -215,19 +227,26 @@ struct Measurements {
 InterpolationModel MeasuredValues(const Measurements& data, const InterpolationOptions& options) {
   InterpolationModel model;
   model.clamp = options.clamp_to_measured;
+  model.weighted = options.weight_by_uncertainty;
   model.measured = data.size();
   std::vector<double> damping;
-  std::vector<std::vector<double>> by_level(data.tree.MaxLevel() + 1);
+  const int levels = data.tree.MaxLevel() + 1;
+  std::vector<std::vector<double>> by_level(levels), level_weight(levels);
   model.min_frequency_hz = std::numeric_limits<double>::infinity();
   model.max_frequency_hz = 0;
-  for (const BranchSample& s : data.samples) {
+  for (int i = 0; i < data.size(); ++i) {
+    const BranchSample& s = data.samples[i];
     damping.push_back(s.damping_ratio);
-    by_level[data.tree.branches[s.branch].level].push_back(s.damping_ratio);
+    const int level = data.tree.branches[s.branch].level;
+    by_level[level].push_back(s.damping_ratio);
+    level_weight[level].push_back(data.weight_z[i]);
     model.min_frequency_hz = std::min(model.min_frequency_hz, s.frequency_hz);
     model.max_frequency_hz = std::max(model.max_frequency_hz, s.frequency_hz);
   }
-  model.median_damping = Median(damping);
-  for (const auto& level : by_level) model.level_damping.push_back(Median(level));
+  model.median_damping = WeightedMedian(damping, data.weight_z);
+  for (int l = 0; l < levels; ++l) {
+    model.level_damping.push_back(WeightedMedian(by_level[l], level_weight[l]));
+  }
   model.measured_frequency_hz = data.BranchLogFrequency(-1);
   for (double& f : model.measured_frequency_hz) f = std::exp(f);  // NaN stays NaN
   return model;
@@ -251,22 +270,24 @@ std::vector<FrequencyModelKind> CandidateModels(const Measurements& data,
   return kinds;
 }
 
-// Mean absolute leave-one-out error of log f for model `kind` (NaN with fewer than 2 samples).
+// Mean absolute leave-one-out error of log f for model `kind`, weighted by the samples' frequency
+// weights (NaN with fewer than 2 samples).
 double LeaveOneOutError(FrequencyModelKind kind, const Measurements& data,
                         const InterpolationModel& model) {
   const int n = data.size();
   if (n < 2) return kNaN;
   const std::vector<Eigen::VectorXd> x = data.Predictors(kind);
-  double sum = 0;
+  double sum = 0, weights = 0;
   for (int leave = 0; leave < n; ++leave) {
     std::vector<Eigen::VectorXd> xs;
-    std::vector<double> ys;
+    std::vector<double> ys, ws;
     for (int i = 0; i < n; ++i) {
       if (i == leave) continue;
       xs.push_back(x[i]);
       ys.push_back(data.log_f[i]);
+      ws.push_back(data.weight_f[i]);
     }
-    double predicted = Predict(Fit(kind, xs, ys), x[leave]);
+    double predicted = Predict(Fit(xs, ys, ws), x[leave]);
     if (kind == FrequencyModelKind::kNearestMeasuredAncestor) {
       predicted = AncestorLogFrequency(data.tree, data.BranchLogFrequency(leave),
                                        data.samples[leave].branch, predicted);
@@ -275,9 +296,10 @@ double LeaveOneOutError(FrequencyModelKind kind, const Measurements& data,
       predicted =
           std::clamp(predicted, std::log(model.min_frequency_hz), std::log(model.max_frequency_hz));
     }
-    sum += std::abs(predicted - data.log_f[leave]);
+    sum += data.weight_f[leave] * std::abs(predicted - data.log_f[leave]);
+    weights += data.weight_f[leave];
   }
-  return sum / n;
+  return sum / weights;
 }
 
 }  // namespace
@@ -294,7 +316,7 @@ InterpolationModel FitInterpolationModel(const Tree& tree, const std::vector<Bra
                        fmt::format("not in the tree (it has {} branches)", tree.size()));
     }
   }
-  const Measurements data(tree, samples);
+  const Measurements data(tree, samples, options.weight_by_uncertainty);
   InterpolationModel model = MeasuredValues(data, options);
   // The candidate with the smallest leave-one-out error wins; ties (and n < 2) keep the simpler
   // model, the earlier in the list.
@@ -304,7 +326,7 @@ InterpolationModel FitInterpolationModel(const Tree& tree, const std::vector<Bra
     if (kind == FrequencyModelKind::kMedian || error < best_error - 1e-12) {
       best_error = std::isnan(error) ? std::numeric_limits<double>::infinity() : error;
       model.kind = kind;
-      model.coefficients = Fit(kind, data.Predictors(kind), data.log_f);
+      model.coefficients = Fit(data.Predictors(kind), data.log_f, data.weight_f);
       model.leave_one_out_log_error = error;
     }
   }

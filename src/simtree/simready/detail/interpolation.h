@@ -20,8 +20,15 @@
 // Damping: the median of the measured branches of the same level, else of the nearest level with
 // measurements.
 //
+// Weights (InterpolationOptions::weight_by_uncertainty): each measured value counts by its inverse
+// variance (sample_weights.h: 1 / relative sd^2, floored at the median relative sd), frequency
+// and damping each by their own deviation: weighted least squares for the size laws, weighted
+// medians for the median, the damping per level and the ancestor model's fallback, and the
+// leave-one-out error that chooses among the models a weighted mean.
+//
 // r is the branch's base radius (its thickness where it bends most), L its length.
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -33,11 +40,14 @@ enum class FrequencyModelKind { kMedian, kNearestMeasuredAncestor, kCantilever, 
 // "median", "nearest_measured_ancestor", "cantilever", "length_and_radius"
 const char* ToString(FrequencyModelKind kind);
 
-// One measured branch: its dominant frequency and damping.
+// One measured branch: its dominant frequency and damping, with their standard deviations (NaN:
+// not given).
 struct BranchSample {
   int branch = 0;
   double frequency_hz = 0.0;
   double damping_ratio = 0.0;
+  double frequency_std_hz = std::numeric_limits<double>::quiet_NaN();
+  double damping_std = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct InterpolationOptions {
@@ -46,6 +56,8 @@ struct InterpolationOptions {
   int min_branches_cantilever = 3;
   int min_branches_two_slopes = 6;
   bool clamp_to_measured = true;  // predictions clamped to the measured frequency range
+  // Each measured value weighted by its inverse variance (above); false: all alike.
+  bool weight_by_uncertainty = false;
 
   // Throws InputError naming the field for a value out of range.
   void Validate() const;
@@ -65,6 +77,7 @@ struct InterpolationModel {
   double median_damping = 0.0;
   int measured = 0;
   bool clamp = true;
+  bool weighted = false;  // fitted with inverse-variance weights
 
   // The measured dominant frequency of every branch of the tree (NaN: not measured), for the
   // ancestor model.
