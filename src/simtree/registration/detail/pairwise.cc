@@ -442,30 +442,38 @@ TurnedFineResult RefineWithTurns(const RegistrationView& source, const Registrat
   if (!target.trunk) return result;
   const Eigen::Isometry3d found = result.fine.icp.target_from_source;
   result.screened = result.fine.icp.fitness < options.screen_below_overlap;
+  // The result as the pair keeps it when no turn beats it: averaged with the reverse. Computed
+  // once, for the gate or at the end.
+  std::optional<FineResult> averaged_unturned;
   if (result.screened && gate) {
-    // The gate sees the result as the pair would keep it unscreened: averaged with the reverse.
-    FineResult unscreened = options.symmetric_fine
-                                ? AverageWithReverse(source, target, result.fine, options)
-                                : result.fine;
-    result.declined = gate(unscreened.icp.target_from_source, unscreened.icp.fitness);
+    averaged_unturned = options.symmetric_fine
+                            ? AverageWithReverse(source, target, result.fine, options)
+                            : result.fine;
+    result.declined =
+        gate(averaged_unturned->icp.target_from_source, averaged_unturned->icp.fitness);
     if (!result.declined.empty()) {
-      result.fine = std::move(unscreened);
+      result.fine = std::move(*averaged_unturned);
       result.screened = false;
       return result;
     }
   }
   const int wanted =
       result.screened ? (refinements >= 0 ? refinements : options.turned_refinements) : 0;
+  bool turned = false;
   for (const TrunkMove& move : ScreenMoves(source, target, found, shifts_m, wanted, options)) {
     FineResult moved = RefinePair(source, target, MoveAboutTrunk(target, move) * found, options);
     if (moved.icp.fitness > result.fine.icp.fitness) {
       result.fine = std::move(moved);
       result.turned_deg = move.angle_deg;
       result.shifted_m = move.shift_m;
+      turned = true;
     }
   }
-  if (options.symmetric_fine)
+  if (!turned && averaged_unturned) {
+    result.fine = std::move(*averaged_unturned);
+  } else if (options.symmetric_fine) {
     result.fine = AverageWithReverse(source, target, result.fine, options);
+  }
   return result;
 }
 
