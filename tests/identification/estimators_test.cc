@@ -154,6 +154,36 @@ TEST(Estimators, GapsAreFittedAroundAndReported) {
   EXPECT_THAT(e.message, HasSubstr("missing samples"));
 }
 
+TEST(Estimators, AModeFarLargerThanTheRecordIsNeverReported) {
+  const SampledSignal s = OneMode(1.2, 0.03, 12.0, 0.01);
+  DampedSinusoidFit fit = FitDampedSinusoids(s, 0.2, 5.0);
+  ASSERT_FALSE(fit.modes.empty());
+  // What a fit across a long gap can add: a slow, heavily damped pole far larger than the motion
+  // (the record's excursion is 1), strongest by the spectral-peak measure.
+  FittedMode artefact;
+  artefact.decay_rate = 2.0;
+  artefact.angular_frequency = 4.0;
+  artefact.frequency_hz = std::hypot(2.0, 4.0) / (2 * M_PI);
+  artefact.damping_ratio = 2.0 / std::hypot(2.0, 4.0);
+  artefact.cos_amplitude = Eigen::VectorXd::Constant(s.channels(), 30.0);
+  artefact.sin_amplitude = Eigen::VectorXd::Zero(s.channels());
+  artefact.channel_amplitude = artefact.cos_amplitude;
+  artefact.amplitude = artefact.channel_amplitude.norm();
+  fit.modes.push_back(artefact);
+  SignalEstimate unchecked;
+  ReadFittedModes(fit, s.channels(), s.duration_s(), 0.2, 5.0, {}, unchecked);
+  ASSERT_EQ(unchecked.dominant.status, EstimateStatus::kOk);
+  EXPECT_LT(Relative(unchecked.dominant.frequency_hz, artefact.frequency_hz), 1e-9);
+
+  MarkModesBeyondRecord(s, fit);
+  EXPECT_TRUE(fit.modes.back().beyond_record);
+  EXPECT_FALSE(fit.modes.front().beyond_record);  // the record's own mode
+  SignalEstimate checked;
+  ReadFittedModes(fit, s.channels(), s.duration_s(), 0.2, 5.0, {}, checked);
+  ASSERT_EQ(checked.dominant.status, EstimateStatus::kOk);
+  EXPECT_LT(Relative(checked.dominant.frequency_hz, 1.2), 0.002);
+}
+
 TEST(Estimators, BadRecordsGiveAReasonAndNoNumbers) {
   auto expect_no_value = [](const SampledSignal& s, EstimateStatus status, const char* words) {
     for (EstimatorKind kind : AllEstimators()) {

@@ -109,8 +109,10 @@ void EstimateSpectral(const SampledSignal& signal, EstimatorKind kind, double mi
 // tree's sway and still die out within a second; the sway then owns the spectrum.
 void EstimateFit(const SampledSignal& signal, double min_hz, double max_hz,
                  const EstimatorOptions& options, SignalEstimate& out) {
-  ReadFittedModes(FitDampedSinusoids(signal, min_hz, max_hz, options), signal.channels(),
-                  signal.duration_s(), min_hz, max_hz, options, out);
+  DampedSinusoidFit fit = FitDampedSinusoids(signal, min_hz, max_hz, options);
+  MarkModesBeyondRecord(signal, fit);
+  ReadFittedModes(std::move(fit), signal.channels(), signal.duration_s(), min_hz, max_hz, options,
+                  out);
 }
 
 }  // namespace
@@ -144,7 +146,7 @@ void ReadFittedModes(DampedSinusoidFit fit, int channels, double record_s, doubl
   // a mode: it is kept in the model but never reported.
   auto in_band = [&](const FittedMode& m) {
     return m.frequency_hz >= min_hz && m.frequency_hz <= max_hz &&
-           m.damping_ratio <= options.max_damping_ratio;
+           m.damping_ratio <= options.max_damping_ratio && !m.beyond_record;
   };
   auto peak = [&](const FittedMode& m, int channel) {
     const double a = channel < 0 ? m.amplitude : m.channel_amplitude[channel];
@@ -188,6 +190,18 @@ void ReadFittedModes(DampedSinusoidFit fit, int channels, double record_s, doubl
     out.per_channel.back().channel = c;
   }
   out.fit = std::move(fit);
+}
+
+void MarkModesBeyondRecord(const SampledSignal& signal, DampedSinusoidFit& fit) {
+  if (fit.offsets.size() != signal.channels()) return;  // no model
+  double excursion = 0.0;
+  for (int i = 0; i < signal.size(); ++i) {
+    if (!signal.valid[i]) continue;
+    excursion = std::max(excursion, (signal.values.row(i).transpose() - fit.offsets).norm());
+  }
+  for (FittedMode& mode : fit.modes) {
+    mode.beyond_record = mode.amplitude > kMaxAmplitudePerExcursion * excursion;
+  }
 }
 
 void EstimatorOptions::Validate() const {

@@ -349,8 +349,9 @@ JointPoles EstimateJointPoles(const std::vector<SampledSignal>& signals,
     e.joint_poles = true;
     e.duration_s = record_s;
     e.noise_level = EstimateNoiseLevel(s).maxCoeff();
-    ReadFittedModes(FitAmplitudes(s, out.fit), s.channels(), record_s, min_hz, max_hz, estimation,
-                    e);
+    DampedSinusoidFit amplitudes = FitAmplitudes(s, out.fit);
+    MarkModesBeyondRecord(s, amplitudes);
+    ReadFittedModes(std::move(amplitudes), s.channels(), record_s, min_hz, max_hz, estimation, e);
     out.links.push_back(std::move(e));
   }
   return out;
