@@ -34,6 +34,21 @@ fs::path TruthFile(const std::string& given, const char* name) {
   return path;
 }
 
+// The truth's per-branch values describe the branches of the truth's tree: a tree built on
+// gt/tree.json is scored branch by branch; a run's reconstructed tree numbers its branches its own
+// way, and scoring it by id would compare unrelated branches.
+void CheckTreeIsTheTruths(const Tree& tree, const std::string& tree_path,
+                          const fs::path& truth_tree_path) {
+  if (!fs::exists(truth_tree_path)) return;
+  const std::string why = eval::BranchMismatch(tree, ReadTreeJson(truth_tree_path.string()));
+  if (why.empty()) return;
+  throw InputError(tree_path, "",
+                   fmt::format("not built on the truth's tree ({}): {}. Branch scores need a tree "
+                               "built on {}; a run's tree is scored by `simtree eval RESULT --gt "
+                               "CAPTURE`",
+                               truth_tree_path.string(), why, truth_tree_path.string()));
+}
+
 nlohmann::ordered_json SummaryJson(const eval::ScoreSummary& s) {
   auto number = [](double v) { return std::isfinite(v) ? nlohmann::ordered_json(v) : nullptr; };
   return {{"scored", s.scored},
@@ -115,7 +130,9 @@ void RegisterEvalIdentification(CLI::App& eval) {
     }
     out["links"] = per_estimator;
     if (!args->tree.empty()) {
-      const eval::BranchScores branches = eval::ScoreBranches(ReadTreeJson(args->tree), truth);
+      const Tree tree = ReadTreeJson(args->tree);
+      CheckTreeIsTheTruths(tree, args->tree, truth_path.parent_path() / "tree.json");
+      const eval::BranchScores branches = eval::ScoreBranches(tree, truth);
       std::printf("%s\n", FormatSummary("branches, measured", branches.measured).c_str());
       std::printf("%s\n", FormatSummary("branches, interpolated", branches.interpolated).c_str());
       out["branches"] = {{"measured", SummaryJson(branches.measured)},

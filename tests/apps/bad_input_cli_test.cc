@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include "simtree/io/capture.h"
+#include "simtree/io/ground_truth.h"
 #include "simtree/io/point_cloud_io.h"
 #include "simtree/io/trajectories.h"
 #include "support/open3d_folder_writer.h"
@@ -158,6 +159,27 @@ TEST(BadInputCli, ADirectoryWhereAFileIsExpected) {
                 {"tree.json"});
   fs::create_directories(dir / "cloud.ply");
   ExpectRefused(dir, Reconstruct(dir / "cloud.ply", dir), {"cloud.ply"});
+}
+
+TEST(BadInputCli, BranchScoresForATreeThatIsNotTheTruths) {
+  const fs::path dir = test::TempDir();
+  WritePullTest(dir, kTwoMarkers);
+  ASSERT_EQ(test::RunCli(Identify(dir)).exit_code, 0);  // statuses only: two frames
+  const fs::path demo = test::SharedData("authors-demo/tree_model");
+  fs::create_directories(dir / "gt");
+  ASSERT_EQ(test::RunCli("convert " + Path(demo / "tree01.txt") + " " + Path(dir / "gt/tree.json"))
+                .exit_code,
+            0);
+  ASSERT_EQ(test::RunCli("convert " + Path(demo / "tree02.txt") + " " + Path(dir / "other.json"))
+                .exit_code,
+            0);
+  ModalTruth truth;
+  truth.branches = {{0, 1.0, 0.03}};
+  WriteModalTruth(truth, dir / "gt/modal.json");
+  ExpectRefused(dir,
+                "eval identification " + Path(dir / "materials.json") + " --gt " + Path(dir) +
+                    " --tree " + Path(dir / "other.json") + " --json " + Path(dir / "scores.json"),
+                {"other.json", "not built on the truth's tree", "148 branches", "has 95"});
 }
 
 TEST(BadInputCli, AnUnwritableOutputFolder) {

@@ -75,19 +75,41 @@ TEST(IdentificationMetrics, ARunnerUpModeIsReportedAndTheNearestStrongModeScored
   EXPECT_EQ(s.links[1].message, "no motion above the noise");
 }
 
-TEST(IdentificationMetrics, BranchesAreScoredByTheirSource) {
+// A chain of `count` vertical branches of 1 m.
+Tree Chain(int count) {
   Tree tree;
-  for (int b = 0; b < 3; ++b) {
+  for (int b = 0; b < count; ++b) {
     Branch branch;
     branch.id = b;
     branch.parent = b - 1;
     branch.nodes = {{Eigen::Vector3d(0, 0, b), 0.1}, {Eigen::Vector3d(0, 0, b + 1), 0.1}};
+    tree.branches.push_back(branch);
+  }
+  return tree;
+}
+
+TEST(IdentificationMetrics, OnlyTheTruthsOwnTreeIsScoredBranchByBranch) {
+  const Tree truth = Chain(3);
+  EXPECT_EQ(BranchMismatch(truth, truth), "");
+  Tree nearly = truth;
+  nearly.branches[2].nodes.back().position.x() += 0.005;  // within a centimetre
+  EXPECT_EQ(BranchMismatch(nearly, truth), "");
+  EXPECT_THAT(BranchMismatch(Chain(4), truth),
+              HasSubstr("4 branches where the truth's tree has 3"));
+  Tree renumbered = truth;
+  std::swap(renumbered.branches[1].nodes, renumbered.branches[2].nodes);
+  EXPECT_THAT(BranchMismatch(renumbered, truth), HasSubstr("branch 1 lies 1.000 m"));
+}
+
+TEST(IdentificationMetrics, BranchesAreScoredByTheirSource) {
+  Tree tree = Chain(3);
+  for (int b = 0; b < 3; ++b) {
+    Branch& branch = tree.branches[b];
     Material m;
     m.modes[2].frequency_hz = 1.0 + 0.1 * b;
     m.modes[2].damping_ratio = 0.03;
     m.source = b == 0 ? MaterialSource::kMeasured : MaterialSource::kInterpolated;
     branch.material = m;
-    tree.branches.push_back(branch);
   }
   ModalTruth truth;
   truth.branches = {{0, 1.0, 0.03}, {1, 1.0, 0.03}, {2, 1.0, 0.03}};

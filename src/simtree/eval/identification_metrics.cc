@@ -117,6 +117,24 @@ BranchScores ScoreBranches(const Tree& tree, const ModalTruth& truth) {
   return out;
 }
 
+std::string BranchMismatch(const Tree& tree, const Tree& truth_tree, double tolerance_m) {
+  if (tree.size() != truth_tree.size()) {
+    return fmt::format("{} branches where the truth's tree has {}", tree.size(), truth_tree.size());
+  }
+  for (int i = 0; i < tree.size(); ++i) {
+    const Branch& a = tree.branches[i];
+    const Branch& b = truth_tree.branches[i];
+    if (a.nodes.empty() || b.nodes.empty()) continue;
+    const double start = (a.nodes.front().position - b.nodes.front().position).norm();
+    const double end = (a.nodes.back().position - b.nodes.back().position).norm();
+    if (std::max(start, end) > tolerance_m) {
+      return fmt::format("branch {} lies {:.3f} m from the truth's branch {}", i,
+                         std::max(start, end), i);
+    }
+  }
+  return "";
+}
+
 std::string FormatSummary(const std::string& name, const ScoreSummary& s) {
   return fmt::format(
       "{:<24} {:>3} scored  median |df/f| {:>6.2f}%  |dzeta/zeta| {:>6.1f}%  (max {:.2f}% / "

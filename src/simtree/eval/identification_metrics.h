@@ -69,6 +69,11 @@ struct BranchScores {
 // Every branch of a simulation-ready tree against the truth's per-branch values.
 BranchScores ScoreBranches(const Tree& simulation_ready, const ModalTruth& truth);
 
+// Why `tree`'s branches are not `truth_tree`'s, branch for branch (another count, or a branch
+// starting or ending more than `tolerance_m` away: a reconstructed or renumbered tree, whose
+// branch ids the truth's per-branch values do not describe); empty when they are.
+std::string BranchMismatch(const Tree& tree, const Tree& truth_tree, double tolerance_m = 0.01);
+
 // Markdown-ish tables for reports.
 std::string FormatLinkScores(const LinkScores& scores);
 std::string FormatSummary(const std::string& name, const ScoreSummary& summary);
