@@ -5,7 +5,9 @@
 # depth, calibration attachment), read it back with `capture-from`, put the read-back stream in
 # place of the PNG one (markers.json and init.json kept) and `run` again. Prints one markdown row
 # per capture: every identified link's frequency and damping ratio from both, the largest
-# relative differences, and the tracked share of marker samples.
+# relative differences, the same for every branch of the simulation-ready trees `build` made
+# (build/simready.json: the values the product carries, after build's uncertain-value flagging),
+# and the tracked share of marker samples.
 #
 # usage: bench/mkv_round_trip.sh <simtree binary> <work folder> [seeds] [species...]
 #   e.g. bench/mkv_round_trip.sh build/bin/simtree /tmp/mkv "1 2"
@@ -17,8 +19,8 @@ shift $(( $# >= 3 ? 3 : $# ))
 species=${*:-"acer_palmatum magnolia acer_rubrum"}
 mkdir -p "$work"
 
-echo "| species | seed | links (png / mkv) | max df/f | median df/f | max dzeta/zeta | median dzeta/zeta | tracked (png / mkv) |"
-echo "| --- | --- | --- | --- | --- | --- | --- | --- |"
+echo "| species | seed | links (png / mkv) | links: max / median df/f | links: max / median dzeta/zeta | branches (measured png / mkv) | branches: max / median df/f | branches: max / median dzeta/zeta | tracked (png / mkv) |"
+echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"
 for sp in $species; do
   for seed in $seeds; do
     dir="$work/${sp}_$seed"
@@ -34,7 +36,7 @@ for sp in $species; do
       "$simtree" -q run "$dir/png" --out "$dir/png_result" --no-render &&
       "$simtree" -q run "$dir/mkv" --out "$dir/mkv_result" --no-render
     } > "$log" 2>&1; then
-      echo "| $sp | $seed | failed: $(grep -m1 -i 'error' "$log" | cut -c1-120) | | | | | |"
+      echo "| $sp | $seed | failed: $(grep -m1 -i 'error' "$log" | cut -c1-120) | | | | | | | |"
       continue
     fi
     python3 - "$dir" "$sp" "$seed" <<'PY'
@@ -54,15 +56,36 @@ def tracked(result):
         rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
     return sum(int(r["valid"]) for r in rows) / max(1, len(rows))
 
-a, b = links(os.path.join(d, "png_result")), links(os.path.join(d, "mkv_result"))
-common = sorted(set(a) & set(b))
-df = [abs(b[k][0] - a[k][0]) / a[k][0] for k in common]
-dz = [abs(b[k][1] - a[k][1]) / a[k][1] for k in common]
+def branches(result):
+    tree = json.load(open(os.path.join(result, "build", "simready.json")))
+    out = []
+    for branch in tree["branches"]:
+        material = branch["material"]
+        mode = material["modes"][0]
+        out.append((mode["frequency_hz"], mode["damping_ratio"], material.get("source")))
+    return out
+
+def rel(x, y):
+    return [abs(v - u) / u for u, v in zip(x, y)]
+
 pct = lambda v: f"{100 * v:.2f}%" if v is not None else "–"
 mx = lambda v: max(v) if v else None
 md = lambda v: statistics.median(v) if v else None
-print(f"| {sp} | {seed} | {len(a)} / {len(b)} | {pct(mx(df))} | {pct(md(df))} | {pct(mx(dz))} | "
-      f"{pct(md(dz))} | {pct(tracked(os.path.join(d, 'png_result')))} / "
+both = lambda v: f"{pct(mx(v))} / {pct(md(v))}"
+
+a, b = links(os.path.join(d, "png_result")), links(os.path.join(d, "mkv_result"))
+common = sorted(set(a) & set(b))
+df = rel([a[k][0] for k in common], [b[k][0] for k in common])
+dz = rel([a[k][1] for k in common], [b[k][1] for k in common])
+ta, tb = branches(os.path.join(d, "png_result")), branches(os.path.join(d, "mkv_result"))
+if len(ta) != len(tb):
+    sys.exit(f"the two runs built trees of {len(ta)} and {len(tb)} branches")
+bf = rel([t[0] for t in ta], [t[0] for t in tb])
+bz = rel([t[1] for t in ta], [t[1] for t in tb])
+measured = lambda t: sum(1 for x in t if x[2] == "measured")
+print(f"| {sp} | {seed} | {len(a)} / {len(b)} | {both(df)} | {both(dz)} | "
+      f"{len(ta)} ({measured(ta)} / {measured(tb)}) | {both(bf)} | {both(bz)} | "
+      f"{pct(tracked(os.path.join(d, 'png_result')))} / "
       f"{pct(tracked(os.path.join(d, 'mkv_result')))} |")
 PY
   done
