@@ -26,10 +26,6 @@ constexpr double kFirstFrameOwnerRatio = 0.5;
 // A detection without depth weaker than this share of the marker's usual tape is not taken: a
 // few noise pixels of the tape's hue (camera colour) that would drag the marker off its tape.
 constexpr double kWeakNoDepth = 0.5;
-// A detection under this share of the marker's usual tape, depth or not, is a sliver or a fragment
-// whose centre says little: on camera colour such detections lay mostly more than 5 px off the
-// tape, and one 13 px off carried a marker away for 25 frames while its whole tape showed.
-constexpr double kSliver = 0.15;
 // While a marker coasts its velocity decays by this per frame: a branch swings back within a
 // fraction of a second, and a velocity fitted to a partly hidden tape's jumping centre carried
 // markers tens of pixels off before they were lost.
@@ -141,7 +137,6 @@ double MarkerTracker::Cost(const Marker& m, const Detection& det) const {
     return cost;
   }
   if (!det.has_depth && det.weight < kWeakNoDepth * m.typical_weight) return kForbidden;
-  if (det.weight < kSliver * m.typical_weight) return kForbidden;
   const Eigen::Vector3d p = m.motion.position();
   const Eigen::Vector3d sigma = m.motion.position_sigma();
   const double sigma_px = std::max(sigma.x(), sigma.y()) * intrinsics_.fx / std::max(p.z(), 0.1);
