@@ -38,13 +38,13 @@ function(simtree_add_module name)
 endfunction()
 
 # simtree_add_test_suite(<name> SOURCES ... DEPS ... [LABELS fast|slow ...] [TIMEOUT seconds]
-#                        [USES_CLI])
+#                        [ENVIRONMENT VAR=value ...] [USES_CLI])
 # One GoogleTest executable per suite; each test case becomes a CTest test carrying LABELS.
 # Tests find the shared data through SIMTREE_SHARED_DATA_DIR and write under SIMTREE_TEST_TMP_DIR.
 # USES_CLI: the tests run the simtree CLI, which is built first. A slow suite is not built at all
 # with SIMTREE_SLOW_TESTS off (the sanitizer build, which runs the fast suite only).
 function(simtree_add_test_suite name)
-  cmake_parse_arguments(ARG "USES_CLI" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "USES_CLI" "TIMEOUT" "SOURCES;DEPS;LABELS;ENVIRONMENT" ${ARGN})
   if(NOT ARG_LABELS)
     set(ARG_LABELS fast)
   endif()
@@ -69,7 +69,7 @@ function(simtree_add_test_suite name)
   gtest_discover_tests(simtree_${name}_tests
     DISCOVERY_MODE PRE_TEST
     WORKING_DIRECTORY ${CMAKE_BINARY_DIR}
-    PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT})
+    PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT} ENVIRONMENT "${ARG_ENVIRONMENT}")
   if(ARG_USES_CLI)
     add_dependencies(simtree_${name}_tests simtree)
   endif()
