@@ -43,10 +43,9 @@ void CheckTreeIsTheTruths(const Tree& tree, const std::string& tree_path,
   const std::string why = eval::BranchMismatch(tree, ReadTreeJson(truth_tree_path.string()));
   if (why.empty()) return;
   throw InputError(tree_path, "",
-                   fmt::format("not built on the truth's tree ({}): {}. Branch scores need a tree "
-                               "built on {}; a run's tree is scored by `simtree eval RESULT --gt "
-                               "CAPTURE`",
-                               truth_tree_path.string(), why, truth_tree_path.string()));
+                   fmt::format("not built on the truth's tree {} ({}); a run's tree is scored by "
+                               "`simtree eval RESULT --gt CAPTURE`",
+                               truth_tree_path.string(), why));
 }
 
 nlohmann::ordered_json SummaryJson(const eval::ScoreSummary& s) {

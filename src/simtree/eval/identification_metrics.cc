@@ -125,11 +125,10 @@ std::string BranchMismatch(const Tree& tree, const Tree& truth_tree, double tole
     const Branch& a = tree.branches[i];
     const Branch& b = truth_tree.branches[i];
     if (a.nodes.empty() || b.nodes.empty()) continue;
-    const double start = (a.nodes.front().position - b.nodes.front().position).norm();
-    const double end = (a.nodes.back().position - b.nodes.back().position).norm();
-    if (std::max(start, end) > tolerance_m) {
-      return fmt::format("branch {} lies {:.3f} m from the truth's branch {}", i,
-                         std::max(start, end), i);
+    const double apart = std::max((a.nodes.front().position - b.nodes.front().position).norm(),
+                                  (a.nodes.back().position - b.nodes.back().position).norm());
+    if (apart > tolerance_m) {
+      return fmt::format("branch {} lies {:.3f} m from the truth's branch {}", i, apart, i);
     }
   }
   return "";
